@@ -1,0 +1,75 @@
+# fastnms: set-up, tests and demo. Every target that needs tools installs them first.
+SHELL := bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := help
+
+VENV    := .venv
+PY      := $(VENV)/bin/python
+STAMP   := $(VENV)/.installed
+JOBS    ?= 2
+PYTEST  := $(PY) -m pytest -n $(JOBS) -q
+# The demo image: the CC0 gravel photograph shipped inside scikit-image's wheel.
+IMAGE   ?= $(shell [ -x $(PY) ] && $(PY) -c 'import os, skimage.data as d; print(os.path.join(os.path.dirname(d.__file__), "gravel.png"))' 2>/dev/null)
+DEMO_PNG ?= build/demo/corners.png
+DEMO_CSV ?= build/demo/corners.csv
+
+.PHONY: help setup demo test test-full sim golden-test synth-check lint clean
+
+help:
+	@echo "make demo       golden model on a real photograph, writes $(DEMO_PNG)"
+	@echo "make test       lint, golden tests, cocotb regression, synthesis checks"
+	@echo "make test-full  the same plus the 'slow' cases"
+	@echo "make sim        cocotb regression only"
+	@echo "make lint       vsg (VHDL) and ruff (Python)"
+
+# ---- set-up ----------------------------------------------------------------
+setup: $(STAMP) check-ghdl
+
+$(STAMP): pyproject.toml requirements.lock
+	@python3 -c 'import ensurepip, venv' 2>/dev/null || { \
+	  if [ "$$(id -u)" = 0 ]; then apt-get update -qq && apt-get install -y -qq python3-venv; \
+	  else echo "make: Python venv support is missing: run 'sudo apt-get install -y python3-venv'"; exit 1; fi; }
+	python3 -m venv $(VENV)
+	$(VENV)/bin/pip install -q --disable-pip-version-check -r requirements.lock
+	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
+	touch $@
+
+.PHONY: check-ghdl
+check-ghdl:
+	@ver=$$(ghdl --version 2>/dev/null | sed -n '1s/^GHDL \([0-9]*\)\..*/\1/p'); \
+	if [ -z "$$ver" ] || [ "$$ver" -lt 2 ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "make: installing GHDL with apt-get"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq ghdl >/dev/null; \
+	  else echo "make: GHDL >= 2.0 is missing: run 'sudo apt-get install -y ghdl'"; exit 1; fi; \
+	fi
+
+# ---- the two README commands -------------------------------------------------
+demo: setup
+	@mkdir -p $(dir $(DEMO_PNG))
+	$(VENV)/bin/fastnms golden "$(IMAGE)" --csv $(DEMO_CSV) --png $(DEMO_PNG)
+	@echo "wrote $(DEMO_PNG) and $(DEMO_CSV)"
+
+test: setup lint
+	$(PYTEST) -m "not slow"
+
+test-full: setup lint
+	$(PYTEST)
+
+# ---- pieces -----------------------------------------------------------------
+sim: setup
+	$(PYTEST) -m "not slow" tb
+
+golden-test: setup
+	$(PYTEST) -m "not slow" golden/tests
+
+synth-check: setup
+	$(PYTEST) -m "not slow" tb/test_synth.py
+
+lint: setup
+	$(VENV)/bin/ruff check --quiet .
+	$(VENV)/bin/ruff format --check --quiet .
+	$(VENV)/bin/vsg --configuration vsg.yaml --all-phases -p 2 -f rtl/*/*.vhd
+
+clean:
+	rm -rf build sim_build .pytest_cache .ruff_cache

@@ -1,0 +1,97 @@
+-- Simple dual-port RAM: one write port, one read port, one clock.
+-- Every memory of the core is an instance of this entity, so RAM inference is
+-- written (and proven by the synthesis tests) once.
+--
+-- Read: rd_data shows mem(rd_addr) READ_LATENCY clocks after a cycle with
+-- rd_en = '1'; rd_en is a clock enable for the whole read pipeline, so with
+-- rd_en = '0' rd_data holds. READ_LATENCY = 2 adds the block RAM output register. STYLE is passed to the
+-- ram_style attribute ("block", "distributed", "auto").
+-- Reading the address that is written in the same cycle gives undefined data:
+-- callers never rely on it. Addresses must be below DEPTH (simulation stops
+-- with an index error otherwise).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_ram_sdp is
+  generic (
+    DEPTH        : positive;
+    WIDTH        : positive;
+    READ_LATENCY : positive := 1;
+    STYLE        : string   := "block"
+  );
+  port (
+    clk     : in    std_logic;
+    wr_en   : in    std_logic;
+    wr_addr : in    unsigned(clog2(DEPTH) - 1 downto 0);
+    wr_data : in    std_logic_vector(WIDTH - 1 downto 0);
+    rd_en   : in    std_logic;
+    rd_addr : in    unsigned(clog2(DEPTH) - 1 downto 0);
+    rd_data : out   std_logic_vector(WIDTH - 1 downto 0)
+  );
+end entity fastnms_ram_sdp;
+
+architecture rtl of fastnms_ram_sdp is
+
+  type mem_t is array (0 to DEPTH - 1) of std_logic_vector(WIDTH - 1 downto 0);
+
+  signal mem      : mem_t;
+  signal rd_array : std_logic_vector(WIDTH - 1 downto 0);
+
+  attribute ram_style        : string;
+  attribute ram_style of mem : signal is STYLE;
+
+begin
+
+  assert READ_LATENCY <= 2
+    report "fastnms_ram_sdp: READ_LATENCY must be 1 or 2"
+    severity failure;
+
+  write_port : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if wr_en = '1' then
+        mem(to_integer(wr_addr)) <= wr_data;
+      end if;
+    end if;
+
+  end process write_port;
+
+  read_port : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if rd_en = '1' then
+        rd_array <= mem(to_integer(rd_addr));
+      end if;
+    end if;
+
+  end process read_port;
+
+  latency_1 : if READ_LATENCY = 1 generate
+    rd_data <= rd_array;
+  end generate latency_1;
+
+  latency_2 : if READ_LATENCY = 2 generate
+    signal rd_reg : std_logic_vector(WIDTH - 1 downto 0);
+  begin
+
+    output_register : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if rd_en = '1' then
+          rd_reg <= rd_array;
+        end if;
+      end if;
+
+    end process output_register;
+
+    rd_data <= rd_reg;
+  end generate latency_2;
+
+end architecture rtl;

@@ -1,0 +1,22 @@
+"""pytest entry: fastnms_window under GHDL for several generic sets and pause patterns."""
+
+import pytest
+from harness import run_cocotb
+
+SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 20, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 1}
+ODD_LAT2 = {"MAX_WIDTH": 37, "MAX_HEIGHT": 4095, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 2}
+WINDOW3 = {"MAX_WIDTH": 16, "MAX_HEIGHT": 16, "WINDOW": 3, "DATA_WIDTH": 9, "READ_LATENCY": 1}
+
+
+@pytest.mark.parametrize(
+    ("idle", "stall"), [(0.0, 0.0), (0.3, 0.0), (0.0, 0.3), (0.4, 0.4)], ids=str
+)
+def test_window_small(request, idle, stall):
+    run_cocotb("fastnms_window", "window_tb", SMALL, name=request.node.nodeid,
+               env={"TB_IDLE": str(idle), "TB_STALL": str(stall)})
+
+
+@pytest.mark.parametrize("generics", [ODD_LAT2, WINDOW3], ids=["w37_lat2", "win3"])
+def test_window_generics(request, generics):
+    run_cocotb("fastnms_window", "window_tb", generics, name=request.node.nodeid,
+               env={"TB_IDLE": "0.3", "TB_STALL": "0.3"})

@@ -1,0 +1,258 @@
+"""cocotb testbench of fastnms_window: every window against NumPy."""
+
+from __future__ import annotations
+
+import ast
+import os
+import random
+
+import cocotb
+import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, RisingEdge
+from stream import StreamSink, StreamSource, value
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+MAX_HEIGHT = GENERICS["MAX_HEIGHT"]
+WINDOW = GENERICS["WINDOW"]
+DATA_WIDTH = GENERICS["DATA_WIDTH"]
+LATENCY = GENERICS["READ_LATENCY"]
+R = WINDOW // 2
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+PERIOD_NS = 10
+
+
+def frame_beats(img: np.ndarray) -> list[dict[str, int]]:
+    """The input beats of a well-formed frame."""
+    h, w = img.shape
+    return [
+        {"data": int(img[y, x]), "sof": int(x == 0 and y == 0), "eol": int(x == w - 1)}
+        for y in range(h)
+        for x in range(w)
+    ]
+
+
+class TB:
+    def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
+        self.dut = dut
+        self.rng = random.Random(cocotb.RANDOM_SEED)
+        self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        dut._log.info("seed=%d idle=%.2f stall=%.2f generics=%s", cocotb.RANDOM_SEED, idle,
+                      stall, GENERICS)
+        cocotb.start_soon(Clock(dut.clk, PERIOD_NS, unit="ns").start())
+        self.source = StreamSource(dut, dut.clk, "in", self.rng, idle)
+        self.sink = StreamSink(dut, dut.clk, "out", ["window", "inside", "sof", "eol"],
+                               self.rng, stall)
+        self.err_line = 0
+        self.err_frame = 0
+        self.set_size(WINDOW, WINDOW)
+        self.running = False
+
+    async def _count_errors(self):
+        while True:
+            await RisingEdge(self.dut.clk)
+            self.err_line += value(self.dut.err_line)
+            self.err_frame += value(self.dut.err_frame)
+
+    def set_size(self, width: int, height: int) -> None:
+        self.dut.cfg_width.value = width
+        self.dut.cfg_height.value = height
+
+    async def reset(self):
+        self.dut.rst.value = 1
+        self.dut.in_valid.value = 0
+        await ClockCycles(self.dut.clk, 3)
+        self.dut.rst.value = 0
+        await RisingEdge(self.dut.clk)
+        if not self.running:  # monitors start once outputs are defined
+            self.running = True
+            cocotb.start_soon(self.sink.run())
+            cocotb.start_soon(self._count_errors())
+
+    def random_image(self, width: int, height: int) -> np.ndarray:
+        return self.np_rng.integers(0, 2**DATA_WIDTH, (height, width), dtype=np.int64)
+
+    async def send_frames(self, images: list[np.ndarray]) -> None:
+        """Send frames back to back; each frame's size is set on the
+        configuration ports once the previous frame's start was taken."""
+        self.set_size(images[0].shape[1], images[0].shape[0])
+        await RisingEdge(self.dut.clk)
+        for i, img in enumerate(images):
+            nxt = images[i + 1] if i + 1 < len(images) else img
+
+            def after(k, nxt=nxt):
+                if k == 0:
+                    self.set_size(nxt.shape[1], nxt.shape[0])
+
+            await self.source.send(frame_beats(img), on_accept=after)
+
+    async def wait_beats(self, count: int, budget_cycles: int) -> None:
+        """Wait until the sink holds `count` beats; fail after the budget."""
+        for _ in range(budget_cycles):
+            if len(self.sink.beats) >= count:
+                break
+            await RisingEdge(self.dut.clk)
+        await ClockCycles(self.dut.clk, 20)  # anything extra would show up now
+        self.dut._log.info("frame lengths %s", [len(f) for f in split_frames(self.sink.beats)])
+        assert len(self.sink.beats) == count, (
+            f"expected {count} output beats, got {len(self.sink.beats)}"
+        )
+
+
+def unpack_window(word: int) -> np.ndarray:
+    mask = (1 << DATA_WIDTH) - 1
+    flat = [(word >> (DATA_WIDTH * i)) & mask for i in range(WINDOW * WINDOW)]
+    return np.array(flat, dtype=np.int64).reshape(WINDOW, WINDOW)
+
+
+def check_frame(img: np.ndarray, beats: list[dict[str, int]], label: str,
+                contents: bool = True) -> None:
+    """Beats of one frame against the model: markers, and unless `contents`
+    is False (a frame cut short) inside flags and windows."""
+    h, w = img.shape
+    assert len(beats) == w * h, f"{label}: {len(beats)} beats for a {w}x{h} frame"
+    for k, beat in enumerate(beats):
+        y, x = divmod(k, w)
+        inside = R <= x <= w - 1 - R and R <= y <= h - 1 - R
+        where = f"{label} at (x={x}, y={y})"
+        assert beat["sof"] == int(k == 0), f"{where}: sof={beat['sof']}"
+        assert beat["eol"] == int(x == w - 1), f"{where}: eol={beat['eol']}"
+        if not contents:
+            continue
+        assert beat["inside"] == int(inside), f"{where}: inside={beat['inside']}"
+        if inside:
+            got = unpack_window(beat["window"])
+            want = img[y - R : y + R + 1, x - R : x + R + 1]
+            assert np.array_equal(got, want), f"{where}: window\n{got}\n!=\n{want}"
+
+
+def split_frames(beats: list[dict[str, int]]) -> list[list[dict[str, int]]]:
+    frames: list[list[dict[str, int]]] = []
+    for beat in beats:
+        if beat["sof"] or not frames:
+            frames.append([])
+        frames[-1].append(beat)
+    return frames
+
+
+def random_size(rng: random.Random) -> tuple[int, int]:
+    widths = [WINDOW, WINDOW + 1, MAX_WIDTH, rng.randrange(WINDOW, MAX_WIDTH + 1) | 1]
+    heights = [WINDOW, WINDOW + 1, rng.randrange(WINDOW, min(MAX_HEIGHT, 3 * WINDOW) + 1)]
+    return rng.choice(widths), rng.choice(heights)
+
+
+@cocotb.test()
+async def random_frames(dut):
+    """Back-to-back frames of random sizes and pixels, every window checked."""
+    tb = TB(dut)
+    await tb.reset()
+    sizes = [(WINDOW, WINDOW), (MAX_WIDTH, WINDOW + 1)]
+    sizes += [random_size(tb.rng) for _ in range(6)]
+    images = [tb.random_image(w, h) for w, h in sizes]
+    dut._log.info("frame sizes %s", sizes)
+    await tb.send_frames(images)
+    total = sum(img.size for img in images)
+    await tb.wait_beats(total, 20 * total + 1000)
+    frames = split_frames(tb.sink.beats)
+    assert len(frames) == len(images)
+    for i, (img, beats) in enumerate(zip(images, frames, strict=True)):
+        check_frame(img, beats, f"frame {i} ({img.shape[1]}x{img.shape[0]})")
+    assert tb.err_line == 0 and tb.err_frame == 0
+
+
+@cocotb.test()
+async def tallest_frame(dut):
+    """A MAX_WIDTH x MAX_HEIGHT frame (small generics only)."""
+    if MAX_WIDTH * MAX_HEIGHT > 4096:
+        dut._log.info("MAX_WIDTH x MAX_HEIGHT too large for this test; frame 3 rows high")
+    height = MAX_HEIGHT if MAX_WIDTH * MAX_HEIGHT <= 4096 else 3 * WINDOW
+    tb = TB(dut)
+    await tb.reset()
+    img = tb.random_image(MAX_WIDTH, height)
+    await tb.send_frames([img])
+    await tb.wait_beats(img.size, 20 * img.size + 1000)
+    check_frame(img, tb.sink.beats, f"{MAX_WIDTH}x{height}")
+
+
+@cocotb.test()
+async def throughput(dut):
+    """No gaps, no stalls: N frames of W x H leave N*W*H + R*W + R + READ_LATENCY
+    cycles after the first pixel entered, i.e. one pixel per clock."""
+    tb = TB(dut, idle=0.0, stall=0.0)
+    await tb.reset()
+    width, height, count = min(MAX_WIDTH, 20), WINDOW + 3, 3
+    images = [tb.random_image(width, height) for _ in range(count)]
+    await tb.send_frames(images)
+    total = count * width * height
+    await tb.wait_beats(total, 4 * total)
+    cycles = (tb.sink.times[-1] - tb.source.accept_times[0]) // PERIOD_NS
+    expected = total + R * width + R + LATENCY
+    dut._log.info("%d frames of %dx%d: %d cycles (expected %d)", count, width, height, cycles,
+                  expected)
+    assert cycles == expected
+    for img, beats in zip(images, split_frames(tb.sink.beats), strict=True):
+        check_frame(img, beats, "throughput frame")
+
+
+@cocotb.test()
+async def malformed_frames(dut):
+    """Bad input is flagged, never stalls the block, and the next good frame
+    comes out exactly right."""
+    tb = TB(dut)
+    await tb.reset()
+    w, h = min(MAX_WIDTH, 12), WINDOW + 2
+    good = [tb.random_image(w, h) for _ in range(7)]
+    tb.set_size(w, h)
+    await ClockCycles(dut.clk, 2)
+    start = R * w + R  # pixels in before the first window leaves
+
+    # An end of line missing and one in mid-line: flagged, geometry kept.
+    beats = frame_beats(good[0])
+    beats[w - 1]["eol"] = 0
+    beats[w + 2]["eol"] = 1
+    await tb.source.send(beats)
+    # A frame cut after its output started is completed with border beats.
+    await tb.source.send(frame_beats(good[1])[: start + w + 2])
+    # A frame cut before its output started produces nothing.
+    await tb.source.send(frame_beats(good[2])[: start - 1])
+    await tb.source.send(frame_beats(good[3]))
+    # Pixels outside any frame are dropped, one err_frame pulse each.
+    await tb.source.send([{"data": 1, "sof": 0, "eol": 0}] * 5)
+    await tb.source.send(frame_beats(good[4]))
+    # A frame whose configured size is out of range is dropped.
+    tb.set_size(WINDOW - 1, h)
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(frame_beats(good[5][:, : WINDOW - 1]))
+    tb.set_size(w, h)
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(frame_beats(good[6]))
+
+    await tb.wait_beats(5 * w * h, 40 * w * h)
+    frames = split_frames(tb.sink.beats)
+    check_frame(good[0], frames[0], "frame with bad eol")
+    check_frame(good[1], frames[1], "cut frame", contents=False)
+    check_frame(good[3], frames[2], "frame after two cuts")
+    check_frame(good[4], frames[3], "frame after stray pixels")
+    check_frame(good[6], frames[4], "frame after a bad size")
+    assert tb.err_line == 2, f"err_line pulsed {tb.err_line} times"
+    expected = 2 + 5 + (WINDOW - 1) * h
+    assert tb.err_frame == expected, f"err_frame pulsed {tb.err_frame} times, not {expected}"
+
+
+@cocotb.test()
+async def reset_mid_frame(dut):
+    """A reset in mid-frame drops the frame; the next one is exact."""
+    tb = TB(dut)
+    await tb.reset()
+    w, h = min(MAX_WIDTH, 10), WINDOW + 1
+    first, second = tb.random_image(w, h), tb.random_image(w, h)
+    tb.set_size(w, h)
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(frame_beats(first)[: (R + 2) * w])
+    await tb.reset()
+    tb.sink.beats.clear()
+    await tb.source.send(frame_beats(second))
+    await tb.wait_beats(w * h, 40 * w * h)
+    check_frame(second, tb.sink.beats, "frame after reset")

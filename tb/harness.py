@@ -1,0 +1,111 @@
+"""Runs cocotb testbenches under GHDL from pytest.
+
+Each (toplevel, generics) pair gets its own build directory under build/sim, so
+generic sets never share a compiled library and pytest-xdist workers can run in
+parallel. Seeds: FASTNMS_SEED sets the seed of every test; otherwise each test
+uses a fixed seed derived from its name, so a run is reproducible. The seed is
+printed (pytest shows it on failure) and logged by the testbench.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import sys
+import zlib
+from pathlib import Path
+
+from cocotb_tools.check_results import get_results
+from cocotb_tools.runner import get_runner
+
+REPO = Path(__file__).resolve().parents[1]
+RTL = REPO / "rtl"
+TB = REPO / "tb"
+BUILD = REPO / "build" / "sim"
+
+# Compile order: packages first, then building blocks, then what uses them.
+RTL_ORDER = ["common"]
+
+
+def rtl_sources() -> list[Path]:
+    """Every VHDL file of the core, packages first."""
+    files: list[Path] = []
+    for area in RTL_ORDER:
+        found = sorted((RTL / area).glob("*.vhd"))
+        files += [f for f in found if f.stem.endswith("_pkg")]
+        files += [f for f in found if not f.stem.endswith("_pkg")]
+    return files
+
+
+def test_seed(name: str) -> int:
+    """The seed for one test: FASTNMS_SEED if set, else a stable hash of its name."""
+    env = os.environ.get("FASTNMS_SEED")
+    if env:
+        return int(env, 0)
+    return zlib.crc32(name.encode()) & 0x7FFFFFFF
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")
+
+
+def run_cocotb(
+    toplevel: str,
+    module: str,
+    generics: dict[str, object],
+    *,
+    testcase: str | None = None,
+    env: dict[str, str] | None = None,
+    name: str,
+) -> None:
+    """Build `toplevel` with `generics` and run the cocotb tests of `module`.
+
+    `module` is a Python module in tb/ or one of its folders; `env` reaches the
+    testbench as environment variables. Fails unless at least one test ran and
+    none failed.
+    """
+    seed = test_seed(name)
+    print(f"seed={seed} (set FASTNMS_SEED={seed} to repeat)")
+    key = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
+    build_dir = BUILD / f"{toplevel}-{key}"
+    test_dir = build_dir / _slug(name)
+    test_dir.mkdir(parents=True, exist_ok=True)
+
+    module_dirs = sorted({str(p.parent) for p in TB.rglob(f"{module}.py")})
+    assert module_dirs, f"no testbench module {module}.py under tb/"
+    # The runner hands sys.path to the simulator's Python as PYTHONPATH.
+    for path in [*module_dirs, str(TB)]:
+        if path not in sys.path:
+            sys.path.insert(0, path)
+
+    runner = get_runner("ghdl")
+    # Build under an exclusive lock, simulate under a shared one: a parallel
+    # worker must not re-analyse the library while another one elaborates it.
+    with open(build_dir / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        runner.build(
+            sources=rtl_sources(),
+            hdl_toplevel=toplevel,
+            build_args=["--std=08"],
+            build_dir=build_dir,
+            always=False,
+        )
+        fcntl.flock(lock, fcntl.LOCK_SH)
+        results = runner.test(
+            test_module=module,
+            hdl_toplevel=toplevel,
+            parameters=generics,
+            test_args=["--std=08", f"--workdir={build_dir}"],
+            # GHDL run-time options go after the top-level name, where plusargs go.
+            plusargs=["--ieee-asserts=disable-at-0"],
+            testcase=testcase,
+            seed=seed,
+            extra_env={"TB_GENERICS": repr(generics), **(env or {})},
+            build_dir=build_dir,
+            test_dir=test_dir,
+            results_xml=str(test_dir / "results.xml"),
+        )
+    tests, failed = get_results(Path(results))
+    assert tests > 0, f"{module}: no cocotb test ran (testcase={testcase!r})"
+    assert failed == 0, f"{module}: {failed} of {tests} cocotb tests failed (seed={seed})"
