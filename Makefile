@@ -69,7 +69,9 @@ synth-check: setup
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
 	$(VENV)/bin/ruff format --check --quiet .
-	$(VENV)/bin/vsg --configuration vsg.yaml --all-phases -p 2 -f rtl/*/*.vhd
+	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd 2>&1) || \
+	  { echo "$$out"; echo "make: vsg found style errors (fix with: $(VENV)/bin/vsg -c vsg.yaml --fix -f FILE)"; exit 1; }
+	@echo "lint: ruff and vsg clean"
 
 clean:
 	rm -rf build sim_build .pytest_cache .ruff_cache

@@ -65,8 +65,9 @@ class StreamSink:
     cycle with probability `stall`. Start `run` once the design is out of
     reset."""
 
-    def __init__(self, dut, clk, prefix: str, fields: list[str], rng: random.Random,
-                 stall: float = 0.0):
+    def __init__(
+        self, dut, clk, prefix: str, fields: list[str], rng: random.Random, stall: float = 0.0
+    ):
         self.dut, self.clk, self.prefix, self.rng, self.stall = dut, clk, prefix, rng, stall
         self.valid = getattr(dut, f"{prefix}_valid")
         self.ready = getattr(dut, f"{prefix}_ready")

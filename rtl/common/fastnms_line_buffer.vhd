@@ -20,8 +20,8 @@ library work;
 
 entity fastnms_line_buffer is
   generic (
-    MAX_WIDTH    : positive;
-    LINES        : positive;
+    MAX_WIDTH    : positive := 1920;
+    LINES        : positive := 6;
     DATA_WIDTH   : positive := 8;
     READ_LATENCY : positive := 1
   );
@@ -40,6 +40,7 @@ end entity fastnms_line_buffer;
 architecture rtl of fastnms_line_buffer is
 
   type col_pipe_t is array (1 to READ_LATENCY) of unsigned(in_col'range);
+
   type data_pipe_t is array (1 to READ_LATENCY) of std_logic_vector(in_data'range);
 
   signal valid_pipe : std_logic_vector(1 to READ_LATENCY);

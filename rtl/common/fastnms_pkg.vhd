@@ -34,9 +34,11 @@ package body fastnms_pkg is
 
   function to_sl (b : boolean) return std_logic is
   begin
+
     if b then
       return '1';
     end if;
+
     return '0';
   end function to_sl;
 

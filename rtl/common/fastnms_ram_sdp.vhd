@@ -18,8 +18,8 @@ library work;
 
 entity fastnms_ram_sdp is
   generic (
-    DEPTH        : positive;
-    WIDTH        : positive;
+    DEPTH        : positive := 1920;
+    WIDTH        : positive := 48;
     READ_LATENCY : positive := 1;
     STYLE        : string   := "block"
   );

@@ -62,15 +62,18 @@ end entity fastnms_window;
 
 architecture rtl of fastnms_window is
 
-  constant R          : natural := WINDOW / 2;
+  constant R : natural := WINDOW / 2;
   -- Token pipeline: the line buffer's read latency, then the window register.
   constant TOKEN_LAST : positive := READ_LATENCY + 1;
 
   subtype x_t is unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+
   subtype y_t is unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+
   subtype pixel_t is std_logic_vector(DATA_WIDTH - 1 downto 0);
 
   type window_t is array (0 to WINDOW - 1, 0 to WINDOW - 1) of pixel_t;
+
   type out_state_t is (idle, lockstep, flush);
 
   -- One output beat in flight beside the window.
@@ -108,16 +111,16 @@ architecture rtl of fastnms_window is
   signal out_y_in   : std_logic;
   signal out_limits : limits_t;
 
-  signal advance    : std_logic;
-  signal at_start   : std_logic;
-  signal ready      : std_logic;
-  signal accept     : std_logic;
-  signal lb_valid   : std_logic;
-  signal lb_col     : x_t;
-  signal col_valid  : std_logic;
-  signal column     : std_logic_vector((WINDOW * DATA_WIDTH) - 1 downto 0);
-  signal win_regs   : window_t;
-  signal tokens     : token_pipe_t;
+  signal advance   : std_logic;
+  signal at_start  : std_logic;
+  signal ready     : std_logic;
+  signal accept    : std_logic;
+  signal lb_valid  : std_logic;
+  signal lb_col    : x_t;
+  signal col_valid : std_logic;
+  signal column    : std_logic_vector((WINDOW * DATA_WIDTH) - 1 downto 0);
+  signal win_regs  : window_t;
+  signal tokens    : token_pipe_t;
 
 begin
 
@@ -128,7 +131,7 @@ begin
     report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be at least WINDOW"
     severity failure;
 
-  advance  <= out_ready or not tokens(TOKEN_LAST).valid;
+  advance <= out_ready or not tokens(TOKEN_LAST).valid;
   -- The pixel that starts a frame's output must wait until the previous
   -- frame's last border beats have left.
   at_start <= '1' when in_active = '1' and in_x = R and in_y = R else
@@ -203,50 +206,42 @@ begin
         -- Output side -------------------------------------------------------
         token := (valid => '0', inside => '0', sof => '0', eol => '0');
 
-        case out_state is
+        if out_state = idle then
+          if accept = '1' and in_sof = '0' and at_start = '1' then
+            token      := (valid => '1', inside => '0', sof => '1', eol => '0');
+            out_state  <= lockstep;
+            out_limits <= in_limits;
+            out_x      <= to_unsigned(1, x_t'length);
+            out_x_in   <= '1' when R = 1 else '0';
+          end if;
+        elsif out_state = flush or accept = '1' then
+          token.valid  := '1';
+          token.inside := out_x_in and out_y_in and not in_sof and
+                          to_sl(out_state = lockstep);
+          token.eol    := '1' when out_x = out_limits.w_last else '0';
 
-          when idle =>
-            if accept = '1' and in_sof = '0' and at_start = '1' then
-              token      := (valid => '1', inside => '0', sof => '1', eol => '0');
-              out_state  <= lockstep;
-              out_limits <= in_limits;
-              out_x      <= to_unsigned(1, x_t'length);
-              out_x_in   <= '1' when R = 1 else '0';
+          if token.eol = '1' then
+            out_x    <= (others => '0');
+            out_x_in <= '0';
+            out_y    <= out_y + 1;
+            out_y_in <= (out_y_in and not to_sl(out_y = out_limits.y_hi)) or
+                        to_sl(out_y = R - 1);
+            if out_y = out_limits.h_last then
+              out_state <= idle;
+              out_y     <= (others => '0');
+              out_y_in  <= '0';
             end if;
+          else
+            out_x    <= out_x + 1;
+            out_x_in <= (out_x_in and not to_sl(out_x = out_limits.x_hi)) or
+                        to_sl(out_x = R - 1);
+          end if;
 
-          when lockstep | flush =>
-            if out_state = flush or accept = '1' then
-              token.valid  := '1';
-              token.inside := out_x_in and out_y_in and not in_sof;
-              if out_state = flush then
-                token.inside := '0';
-              end if;
-              token.eol := '1' when out_x = out_limits.w_last else '0';
-
-              if token.eol = '1' then
-                out_x    <= (others => '0');
-                out_x_in <= '0';
-                out_y    <= out_y + 1;
-                out_y_in <= (out_y_in and not to_sl(out_y = out_limits.y_hi)) or
-                            to_sl(out_y = R - 1);
-                if out_y = out_limits.h_last then
-                  out_state <= idle;
-                  out_y     <= (others => '0');
-                  out_y_in  <= '0';
-                end if;
-              else
-                out_x    <= out_x + 1;
-                out_x_in <= (out_x_in and not to_sl(out_x = out_limits.x_hi)) or
-                            to_sl(out_x = R - 1);
-              end if;
-
-              -- The frame's last pixel (or a cut) ends the lockstep part.
-              if out_state = lockstep and (last = '1' or in_sof = '1') then
-                out_state <= flush;
-              end if;
-            end if;
-
-        end case;
+          -- The frame's last pixel (or a cut) ends the lockstep part.
+          if out_state = lockstep and (last = '1' or in_sof = '1') then
+            out_state <= flush;
+          end if;
+        end if;
 
         tokens(1) <= token;
         for stage in 2 to TOKEN_LAST loop
@@ -301,11 +296,10 @@ begin
       out_column => column
     );
 
-  flatten : for row in 0 to WINDOW - 1 generate
-    flatten_col : for col in 0 to WINDOW - 1 generate
-      out_window((row * WINDOW + col + 1) * DATA_WIDTH - 1 downto (row * WINDOW + col) * DATA_WIDTH)
-        <= win_regs(row, col);
-    end generate flatten_col;
+  -- Pixel (row r, column c) of the window is slice r * WINDOW + c.
+
+  flatten : for index in 0 to WINDOW * WINDOW - 1 generate
+    out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <= win_regs(index / WINDOW, index mod WINDOW);
   end generate flatten;
 
   in_ready   <= ready;

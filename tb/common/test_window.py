@@ -12,11 +12,21 @@ WINDOW3 = {"MAX_WIDTH": 16, "MAX_HEIGHT": 16, "WINDOW": 3, "DATA_WIDTH": 9, "REA
     ("idle", "stall"), [(0.0, 0.0), (0.3, 0.0), (0.0, 0.3), (0.4, 0.4)], ids=str
 )
 def test_window_small(request, idle, stall):
-    run_cocotb("fastnms_window", "window_tb", SMALL, name=request.node.nodeid,
-               env={"TB_IDLE": str(idle), "TB_STALL": str(stall)})
+    run_cocotb(
+        "fastnms_window",
+        "window_tb",
+        SMALL,
+        name=request.node.nodeid,
+        env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
 
 
 @pytest.mark.parametrize("generics", [ODD_LAT2, WINDOW3], ids=["w37_lat2", "win3"])
 def test_window_generics(request, generics):
-    run_cocotb("fastnms_window", "window_tb", generics, name=request.node.nodeid,
-               env={"TB_IDLE": "0.3", "TB_STALL": "0.3"})
+    run_cocotb(
+        "fastnms_window",
+        "window_tb",
+        generics,
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.3", "TB_STALL": "0.3"},
+    )

@@ -39,12 +39,14 @@ class TB:
         self.dut = dut
         self.rng = random.Random(cocotb.RANDOM_SEED)
         self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        dut._log.info("seed=%d idle=%.2f stall=%.2f generics=%s", cocotb.RANDOM_SEED, idle,
-                      stall, GENERICS)
+        dut._log.info(
+            "seed=%d idle=%.2f stall=%.2f generics=%s", cocotb.RANDOM_SEED, idle, stall, GENERICS
+        )
         cocotb.start_soon(Clock(dut.clk, PERIOD_NS, unit="ns").start())
         self.source = StreamSource(dut, dut.clk, "in", self.rng, idle)
-        self.sink = StreamSink(dut, dut.clk, "out", ["window", "inside", "sof", "eol"],
-                               self.rng, stall)
+        self.sink = StreamSink(
+            dut, dut.clk, "out", ["window", "inside", "sof", "eol"], self.rng, stall
+        )
         self.err_line = 0
         self.err_frame = 0
         self.set_size(WINDOW, WINDOW)
@@ -107,8 +109,9 @@ def unpack_window(word: int) -> np.ndarray:
     return np.array(flat, dtype=np.int64).reshape(WINDOW, WINDOW)
 
 
-def check_frame(img: np.ndarray, beats: list[dict[str, int]], label: str,
-                contents: bool = True) -> None:
+def check_frame(
+    img: np.ndarray, beats: list[dict[str, int]], label: str, contents: bool = True
+) -> None:
     """Beats of one frame against the model: markers, and unless `contents`
     is False (a frame cut short) inside flags and windows."""
     h, w = img.shape
@@ -189,8 +192,9 @@ async def throughput(dut):
     await tb.wait_beats(total, 4 * total)
     cycles = (tb.sink.times[-1] - tb.source.accept_times[0]) // PERIOD_NS
     expected = total + R * width + R + LATENCY
-    dut._log.info("%d frames of %dx%d: %d cycles (expected %d)", count, width, height, cycles,
-                  expected)
+    dut._log.info(
+        "%d frames of %dx%d: %d cycles (expected %d)", count, width, height, cycles, expected
+    )
     assert cycles == expected
     for img, beats in zip(images, split_frames(tb.sink.beats), strict=True):
         check_frame(img, beats, "throughput frame")

