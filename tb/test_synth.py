@@ -1,10 +1,13 @@
 """Synthesis regression: every entity synthesizes (GHDL), maps to xc7 cells
-without latches (yosys synth_xilinx), and the memories land in block RAM."""
+without latches and with at most 4 logic levels between registers (yosys
+synth_xilinx), and the memories land in block RAM."""
 
 import pytest
 from synth import entities, ghdl_synth, yosys_xc7
 
 LATCHES = ("LDCE", "LDPE")
+# The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
+MAX_LOGIC_LEVELS = 4
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
 
@@ -20,6 +23,7 @@ def test_entity_synthesizes_without_latches(entity):
     print(entity, cells)
     assert not any(cells.get(c) for c in LATCHES), f"latches: {cells}"
     assert sum(cells.values()) > 0
+    assert cells["logic_levels"] <= MAX_LOGIC_LEVELS, f"logic levels: {cells}"
 
 
 def test_line_buffer_1920_is_block_ram():

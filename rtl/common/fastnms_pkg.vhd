@@ -14,6 +14,10 @@ package fastnms_pkg is
   -- '1' for true.
   function to_sl (b : boolean) return std_logic;
 
+  -- '1' when x >= c, as a chain of gates rather than a subtractor, so that it
+  -- maps to two levels of LUTs instead of a carry chain.
+  function at_least (x : unsigned; c : natural) return std_logic;
+
 end package fastnms_pkg;
 
 package body fastnms_pkg is
@@ -41,5 +45,28 @@ package body fastnms_pkg is
 
     return '0';
   end function to_sl;
+
+  function at_least (x : unsigned; c : natural) return std_logic is
+    constant CV : unsigned(x'length downto 0) := to_unsigned(c, x'length + 1);
+    variable ge : std_logic                   := '1'; -- x(-1 downto 0) >= c(-1 downto 0)
+    variable xv : unsigned(x'length - 1 downto 0);
+  begin
+
+    if CV(x'length) = '1' then
+      return '0';
+    end if;
+
+    xv := x;
+    for i in 0 to x'length - 1 loop
+
+      if CV(i) = '1' then
+        ge := xv(i) and ge;
+      else
+        ge := xv(i) or ge;
+      end if;
+
+    end loop;
+    return ge;
+  end function at_least;
 
 end package body fastnms_pkg;

@@ -6,24 +6,32 @@
 -- out_inside = '1' when the whole window lies in the frame (R <= x <= W-1-R,
 -- R <= y <= H-1-R, R = WINDOW/2); out_window is meaningful only then.
 -- The output runs R rows and R pixels behind the input (lockstep): the window
--- centred on pixel k leaves when pixel k + R*W + R has entered. The last
+-- centred on pixel k leaves READ_LATENCY + 2 clocks after pixel k + R*W + R
+-- was accepted. The last
 -- R*W + R beats of a frame are border beats that need no pixel: they leave
 -- while the next frame's first pixels enter, or on their own when the input is
 -- idle, so back-to-back frames of equal width run at one pixel per clock.
 --
 -- Geometry comes from cfg_width/cfg_height, sampled when the start-of-frame
--- pixel is accepted (they must be stable from the clock before). in_sof starts
--- a frame; in_eol is only checked. Malformed input never stalls the block:
+-- pixel is accepted (they must be stable for the 2 clocks before). in_sof
+-- starts a frame; in_eol is only checked. Malformed input never stalls the
+-- block:
 --   err_line  pulses when in_eol is missing on the last pixel of a line or
 --             present elsewhere (the frame keeps its configured geometry);
 --   err_frame pulses on a start of frame before the previous frame ended (the
---             cut frame is completed with border beats), a pixel outside any
---             frame (dropped) or a start of frame with a size outside
---             WINDOW..MAX_WIDTH x WINDOW..MAX_HEIGHT (the frame is dropped).
+--             cut frame is completed with border beats if its output had
+--             started, else dropped; one extra clock), on each pixel outside
+--             any frame (dropped) and on each pixel of a frame whose size is
+--             outside WINDOW..MAX_WIDTH x WINDOW..MAX_HEIGHT (dropped).
 --
 -- Handshake: the whole pipeline advances when out_ready = '1' or no output is
 -- held, so in_ready depends on out_ready through one gate. Put a skid buffer
 -- behind this block if its consumer's ready is not a register.
+--
+-- Logic depth: every decision is taken from registers. Pixels enter an input
+-- register first; the counters reset through the flip-flops' synchronous
+-- reset, so their next value is the bare carry chain; the comparisons behind
+-- the position flags are made one pixel ahead.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -86,42 +94,69 @@ architecture rtl of fastnms_window is
 
   type token_pipe_t is array (1 to TOKEN_LAST) of token_t;
 
-  -- Frame geometry, as limits that the counters compare against.
+  -- Frame geometry, as the values the position counters compare against.
   type limits_t is record
-    w_last : x_t; -- W - 1
-    h_last : y_t; -- H - 1
-    x_hi   : x_t; -- W - 1 - R: last inside column
-    y_hi   : y_t; -- H - 1 - R: last inside row
+    w_last_m1 : x_t; -- W - 2: the column before the last
+    h_last_m1 : y_t; -- H - 2: the row before the last
+    x_hi      : x_t; -- W - 1 - R: the last inside column
+    y_hi      : y_t; -- H - 1 - R: the last inside row
   end record limits_t;
 
-  signal cfg_ok     : std_logic;
+  -- Configuration, two register stages: the size, then its range checks
+  -- (each separately, to keep the logic shallow) and the limits.
+  signal cfg_w      : unsigned(cfg_width'range);
+  signal cfg_h      : unsigned(cfg_height'range);
+  signal cfg_ok     : std_logic_vector(3 downto 0);
   signal cfg_limits : limits_t;
+
+  -- Input register; the configuration is sampled with a start of frame.
+  signal a_valid  : std_logic;
+  signal a_data   : pixel_t;
+  signal a_sof    : std_logic;
+  signal a_eol    : std_logic;
+  signal a_start  : std_logic; -- a start of frame with a valid size
+  signal a_limits : limits_t;
 
   -- Input side: position of the next pixel of the frame being received.
   signal in_active : std_logic;
   signal in_x      : x_t;
   signal in_y      : y_t;
+  signal in_x_last : std_logic; -- in_x = W - 1
+  signal in_y_last : std_logic; -- in_y = H - 1
+  signal at_start  : std_logic; -- (in_x, in_y) = (R, R): the first window's pixel
   signal in_limits : limits_t;
-  -- The next pixel is (R, R): the one whose window is the frame's first.
-  signal at_start : std_logic;
 
   -- Output side: position of the next beat of the frame being emitted.
   signal out_state  : out_state_t;
+  signal out_busy   : std_logic; -- out_state /= idle
   signal out_x      : x_t;
   signal out_y      : y_t;
-  signal out_x_in   : std_logic;
-  signal out_y_in   : std_logic;
+  signal out_x_last : std_logic;
+  signal out_y_last : std_logic;
+  signal out_x_in   : std_logic; -- R <= out_x <= W - 1 - R
+  signal out_y_in   : std_logic; -- R <= out_y <= H - 1 - R
   signal out_limits : limits_t;
 
-  signal advance   : std_logic;
-  signal ready     : std_logic;
-  signal accept    : std_logic;
-  signal lb_valid  : std_logic;
-  signal lb_col    : x_t;
-  signal col_valid : std_logic;
-  signal column    : std_logic_vector((WINDOW * DATA_WIDTH) - 1 downto 0);
-  signal win_regs  : window_t;
-  signal tokens    : token_pipe_t;
+  signal advance : std_logic;
+  signal restart : std_logic;
+  signal hold    : std_logic;
+  signal take    : std_logic;
+  signal counted : std_logic;
+  signal emit    : std_logic;
+  -- Counter controls: a clear beats a step, so that both map onto the
+  -- flip-flops' reset and enable pins and the next value is the carry chain.
+  signal in_x_clear  : std_logic;
+  signal in_x_step   : std_logic;
+  signal in_y_clear  : std_logic;
+  signal in_y_step   : std_logic;
+  signal out_x_clear : std_logic;
+  signal out_x_step  : std_logic;
+  signal out_y_clear : std_logic;
+  signal out_y_step  : std_logic;
+  signal col_valid   : std_logic;
+  signal column      : std_logic_vector((WINDOW * DATA_WIDTH) - 1 downto 0);
+  signal win_regs    : window_t;
+  signal tokens      : token_pipe_t;
 
 begin
 
@@ -133,38 +168,102 @@ begin
     severity failure;
 
   advance <= out_ready or not tokens(TOKEN_LAST).valid;
-  -- The pixel that starts a frame's output must wait until the previous
-  -- frame's last border beats have left.
-  ready  <= advance and not (at_start and not in_sof and to_sl(out_state /= idle));
-  accept <= in_valid and ready;
 
-  lb_valid <= accept and ((in_sof and cfg_ok) or (not in_sof and in_active));
-  lb_col   <= (others => '0') when in_sof = '1' else
-              in_x;
+  -- A start of frame inside a frame first resets the input side (one clock).
+  restart <= a_valid and a_sof and in_active;
+  -- The pixel that starts a frame's output waits until the previous frame's
+  -- last border beats have left.
+  hold <= restart or (a_valid and not a_sof and at_start and out_busy);
+  take <= a_valid and not hold;
+  -- A taken pixel that belongs to a frame (in_active, or a start of frame
+  -- with a valid size) and so moves the input position.
+  counted <= take and (in_active or a_start);
+  -- An output beat: every clock while flushing, with each pixel in lockstep.
+  emit <= '1' when out_state = flush else
+          take when out_state = lockstep else
+          take and at_start;
+
+  in_ready <= advance and not hold;
+
+  in_x_clear  <= rst or (advance and (restart or (counted and in_x_last)));
+  in_x_step   <= advance and counted;
+  in_y_clear  <= rst or (advance and (restart or (counted and in_x_last and in_y_last)));
+  in_y_step   <= advance and counted and in_x_last;
+  out_x_clear <= rst or (advance and emit and out_x_last);
+  out_x_step  <= advance and emit;
+  out_y_clear <= rst or (advance and emit and out_x_last and out_y_last);
+  out_y_step  <= advance and emit and out_x_last;
+
+  counters : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if in_x_clear = '1' then
+        in_x <= (others => '0');
+      elsif in_x_step = '1' then
+        in_x <= in_x + 1;
+      end if;
+      if in_y_clear = '1' then
+        in_y <= (others => '0');
+      elsif in_y_step = '1' then
+        in_y <= in_y + 1;
+      end if;
+      if out_x_clear = '1' then
+        out_x <= (others => '0');
+      elsif out_x_step = '1' then
+        out_x <= out_x + 1;
+      end if;
+      if out_y_clear = '1' then
+        out_y <= (others => '0');
+      elsif out_y_step = '1' then
+        out_y <= out_y + 1;
+      end if;
+    end if;
+
+  end process counters;
 
   config : process (clk) is
   begin
 
     if rising_edge(clk) then
-      cfg_ok <= '0';
-      if cfg_width >= WINDOW and cfg_width <= MAX_WIDTH and
-         cfg_height >= WINDOW and cfg_height <= MAX_HEIGHT then
-        cfg_ok <= '1';
-      end if;
-      cfg_limits.w_last <= resize(cfg_width - 1, x_t'length);
-      cfg_limits.h_last <= resize(cfg_height - 1, y_t'length);
-      cfg_limits.x_hi   <= resize(cfg_width - 1 - R, x_t'length);
-      cfg_limits.y_hi   <= resize(cfg_height - 1 - R, y_t'length);
+      cfg_w     <= cfg_width;
+      cfg_h     <= cfg_height;
+      cfg_ok(0) <= at_least(cfg_w, WINDOW);
+      cfg_ok(1) <= not at_least(cfg_w, MAX_WIDTH + 1);
+      cfg_ok(2) <= at_least(cfg_h, WINDOW);
+      cfg_ok(3) <= not at_least(cfg_h, MAX_HEIGHT + 1);
+
+      cfg_limits.w_last_m1 <= resize(cfg_w - 2, x_t'length);
+      cfg_limits.h_last_m1 <= resize(cfg_h - 2, y_t'length);
+      cfg_limits.x_hi      <= resize(cfg_w - (R + 1), x_t'length);
+      cfg_limits.y_hi      <= resize(cfg_h - (R + 1), y_t'length);
     end if;
 
   end process config;
 
-  control : process (clk) is
+  input_register : process (clk) is
+  begin
 
-    variable token  : token_t;
-    variable last   : std_logic;
-    variable x_last : boolean;
+    if rising_edge(clk) then
+      if advance = '1' and hold = '0' then
+        a_valid <= in_valid;
+        a_data  <= in_data;
+        a_sof   <= in_sof;
+        a_eol   <= in_eol;
+        a_start <= in_sof and to_sl(cfg_ok = "1111");
+        if in_sof = '1' then
+          a_limits <= cfg_limits;
+        end if;
+      end if;
 
+      if rst = '1' then
+        a_valid <= '0';
+      end if;
+    end if;
+
+  end process input_register;
+
+  input_side : process (clk) is
   begin
 
     if rising_edge(clk) then
@@ -172,113 +271,107 @@ begin
       err_frame <= '0';
 
       if advance = '1' then
-        -- Input side --------------------------------------------------------
-        last := '0';
-        if accept = '1' then
-          -- (R, R) follows (R - 1, R); registered so that in_ready stays shallow.
-          at_start <= in_active and not in_sof and to_sl(in_x = R - 1 and in_y = R);
-          if in_sof = '1' then
-            err_frame <= in_active or not cfg_ok;
-            err_line  <= in_eol;
-            in_active <= cfg_ok;
-            in_limits <= cfg_limits;
-            in_x      <= to_unsigned(1, x_t'length);
-            in_y      <= (others => '0');
-          elsif in_active = '1' then
-            x_last := in_x = in_limits.w_last;
-            if x_last /= (in_eol = '1') then
-              err_line <= '1';
-            end if;
-            if x_last then
-              in_x <= (others => '0');
-              in_y <= in_y + 1;
-              if in_y = in_limits.h_last then
-                in_active <= '0';
-                last      := '1';
-              end if;
-            else
-              in_x <= in_x + 1;
+        if restart = '1' then
+          err_frame <= '1';
+          in_active <= '0';
+          in_x_last <= '0';
+          in_y_last <= '0';
+          at_start  <= '0';
+        elsif take = '1' and counted = '0' then
+          -- A pixel outside any frame, or of a frame with a bad size.
+          err_frame <= '1';
+        elsif counted = '1' then
+          -- At a start of frame the position is already (0, 0).
+          if a_sof = '1' then
+            in_active <= '1';
+            in_limits <= a_limits;
+          end if;
+          err_line <= in_x_last xor a_eol;
+          at_start <= to_sl(in_x = R - 1 and in_y = R);
+          if in_x_last = '1' then
+            in_x_last <= '0';
+            in_y_last <= to_sl(in_y = in_limits.h_last_m1);
+            if in_y_last = '1' then
+              in_active <= '0';
+              in_y_last <= '0';
             end if;
           else
-            err_frame <= '1';
+            in_x_last <= to_sl(in_x = in_limits.w_last_m1) and not a_sof;
           end if;
-        end if;
-
-        -- Output side -------------------------------------------------------
-        token := (valid => '0', inside => '0', sof => '0', eol => '0');
-
-        if out_state = idle then
-          if accept = '1' and in_sof = '0' and at_start = '1' then
-            token      := (valid => '1', inside => '0', sof => '1', eol => '0');
-            out_state  <= lockstep;
-            out_limits <= in_limits;
-            out_x      <= to_unsigned(1, x_t'length);
-            out_x_in   <= '1' when R = 1 else '0';
-          end if;
-        elsif out_state = flush or accept = '1' then
-          token.valid  := '1';
-          token.inside := out_x_in and out_y_in and not in_sof and
-                          to_sl(out_state = lockstep);
-          token.eol    := '1' when out_x = out_limits.w_last else '0';
-
-          if token.eol = '1' then
-            out_x    <= (others => '0');
-            out_x_in <= '0';
-            out_y    <= out_y + 1;
-            out_y_in <= (out_y_in and not to_sl(out_y = out_limits.y_hi)) or
-                        to_sl(out_y = R - 1);
-            if out_y = out_limits.h_last then
-              out_state <= idle;
-              out_y     <= (others => '0');
-              out_y_in  <= '0';
-            end if;
-          else
-            out_x    <= out_x + 1;
-            out_x_in <= (out_x_in and not to_sl(out_x = out_limits.x_hi)) or
-                        to_sl(out_x = R - 1);
-          end if;
-
-          -- The frame's last pixel (or a cut) ends the lockstep part.
-          if out_state = lockstep and (last = '1' or in_sof = '1') then
-            out_state <= flush;
-          end if;
-        end if;
-
-        tokens(1) <= token;
-        for stage in 2 to TOKEN_LAST loop
-          tokens(stage) <= tokens(stage - 1);
-        end loop;
-
-        -- Window: shift left by one column when a column arrives.
-        if col_valid = '1' then
-          for row in 0 to WINDOW - 1 loop
-            for col in 0 to WINDOW - 2 loop
-              win_regs(row, col) <= win_regs(row, col + 1);
-            end loop;
-            win_regs(row, WINDOW - 1) <= column((row + 1) * DATA_WIDTH - 1 downto row * DATA_WIDTH);
-          end loop;
         end if;
       end if;
 
       if rst = '1' then
         in_active <= '0';
+        in_x_last <= '0';
+        in_y_last <= '0';
         at_start  <= '0';
-        in_x      <= (others => '0');
-        in_y      <= (others => '0');
-        out_state <= idle;
-        out_x     <= (others => '0');
-        out_y     <= (others => '0');
-        out_x_in  <= '0';
-        out_y_in  <= '0';
         err_line  <= '0';
         err_frame <= '0';
+      end if;
+    end if;
+
+  end process input_side;
+
+  output_side : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if advance = '1' then
+        tokens(1).valid  <= emit;
+        tokens(1).sof    <= to_sl(out_state = idle);
+        tokens(1).eol    <= out_x_last;
+        tokens(1).inside <= out_x_in and out_y_in and to_sl(out_state = lockstep);
+        for stage in 2 to TOKEN_LAST loop
+          tokens(stage) <= tokens(stage - 1);
+        end loop;
+
+        if emit = '1' then
+          if out_state = idle then
+            out_state  <= lockstep;
+            out_busy   <= '1';
+            out_limits <= in_limits;
+          end if;
+          if out_x_last = '1' then
+            out_x_last <= '0';
+            out_x_in   <= '0';
+            out_y_last <= to_sl(out_y = out_limits.h_last_m1);
+            out_y_in   <= (out_y_in and not to_sl(out_y = out_limits.y_hi)) or to_sl(out_y = R - 1);
+            if out_y_last = '1' then
+              out_state  <= idle;
+              out_busy   <= '0';
+              out_y_last <= '0';
+              out_y_in   <= '0';
+            end if;
+          else
+            -- Leaving idle, out_limits still hold the previous frame's values;
+            -- column 0 never matches them, so the flags stay right.
+            out_x_last <= to_sl(out_x = out_limits.w_last_m1) and to_sl(out_state /= idle);
+            out_x_in   <= (out_x_in and not to_sl(out_x = out_limits.x_hi)) or to_sl(out_x = R - 1);
+          end if;
+        end if;
+
+        -- The frame's last pixel, or a cut, ends the lockstep part.
+        if out_state = lockstep and
+           (restart = '1' or (counted = '1' and in_x_last = '1' and in_y_last = '1')) then
+          out_state <= flush;
+        end if;
+      end if;
+
+      if rst = '1' then
+        out_state  <= idle;
+        out_busy   <= '0';
+        out_x_last <= '0';
+        out_y_last <= '0';
+        out_x_in   <= '0';
+        out_y_in   <= '0';
         for stage in 1 to TOKEN_LAST loop
           tokens(stage).valid <= '0';
         end loop;
       end if;
     end if;
 
-  end process control;
+  end process output_side;
 
   lines : entity work.fastnms_line_buffer
     generic map (
@@ -291,12 +384,29 @@ begin
       clk        => clk,
       rst        => rst,
       en         => advance,
-      in_valid   => lb_valid,
-      in_col     => lb_col,
-      in_data    => in_data,
+      in_valid   => counted,
+      in_col     => in_x,
+      in_data    => a_data,
       out_valid  => col_valid,
       out_column => column
     );
+
+  -- Window: shift left by one column when a column arrives.
+  window_shift : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if advance = '1' and col_valid = '1' then
+        for row in 0 to WINDOW - 1 loop
+          for col in 0 to WINDOW - 2 loop
+            win_regs(row, col) <= win_regs(row, col + 1);
+          end loop;
+          win_regs(row, WINDOW - 1) <= column((row + 1) * DATA_WIDTH - 1 downto row * DATA_WIDTH);
+        end loop;
+      end if;
+    end if;
+
+  end process window_shift;
 
   -- Pixel (row r, column c) of the window is slice r * WINDOW + c.
 
@@ -304,7 +414,6 @@ begin
     out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <= win_regs(index / WINDOW, index mod WINDOW);
   end generate flatten;
 
-  in_ready   <= ready;
   out_valid  <= tokens(TOKEN_LAST).valid;
   out_inside <= tokens(TOKEN_LAST).inside;
   out_sof    <= tokens(TOKEN_LAST).sof;

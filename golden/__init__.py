@@ -1,0 +1,23 @@
+"""fastnms golden model: FAST-9/16 corners with non-maxima suppression, bit-exact with
+OpenCV's cv::FAST (TYPE_9_16), plus the paper's SAD score and region NMS.
+
+This package is the contract the RTL is checked against.
+"""
+
+from .fast import CIRCLE_OFFSETS, fast_maps
+from .image import ImageError, load_grey
+from .model import NMS_MODES, SCORES, detect
+from .nms import nms_3x3, nms_none, nms_region
+
+__all__ = [
+    "CIRCLE_OFFSETS",
+    "NMS_MODES",
+    "SCORES",
+    "ImageError",
+    "detect",
+    "fast_maps",
+    "load_grey",
+    "nms_3x3",
+    "nms_none",
+    "nms_region",
+]
