@@ -13,7 +13,7 @@ IMAGE   ?= $(shell [ -x $(PY) ] && $(PY) -c 'import os, skimage.data as d; print
 DEMO_PNG ?= build/demo/corners.png
 DEMO_CSV ?= build/demo/corners.csv
 
-.PHONY: help setup demo test test-full sim golden-test synth-check lint clean
+.PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean
 
 help:
 	@echo "make demo       golden model on a real photograph, writes $(DEMO_PNG)"
@@ -21,6 +21,7 @@ help:
 	@echo "make test-full  the same plus the 'slow' cases"
 	@echo "make sim        cocotb regression only"
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
+	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector (yosys, xc7)"
 
 # ---- set-up ----------------------------------------------------------------
 setup: $(STAMP) check-ghdl
@@ -65,6 +66,11 @@ golden-test: setup
 
 synth-check: setup
 	$(PYTEST) -m "not slow" tb/test_synth.py
+
+# Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector.
+synth-report: setup
+	@cd tb && for score in opencv sad; do \
+	  ../$(PY) synth.py fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; done
 
 lint: setup
 	$(VENV)/bin/ruff check --quiet .

@@ -25,17 +25,26 @@ TB = REPO / "tb"
 BUILD = REPO / "build" / "sim"
 
 # Compile order: packages first, then building blocks, then what uses them.
-RTL_ORDER = ["common"]
+RTL_ORDER = ["common", "fast"]
 
 
 def rtl_sources() -> list[Path]:
-    """Every VHDL file of the core, packages first."""
-    files: list[Path] = []
-    for area in RTL_ORDER:
-        found = sorted((RTL / area).glob("*.vhd"))
-        files += [f for f in found if f.stem.endswith("_pkg")]
-        files += [f for f in found if not f.stem.endswith("_pkg")]
-    return files
+    """Every VHDL file of the core in compile order: packages first, then each
+    entity after the entities it instantiates (`entity work.NAME`)."""
+    files = [f for area in RTL_ORDER for f in sorted((RTL / area).glob("*.vhd"))]
+    uses = {
+        f.stem: set(re.findall(r"entity\s+work\.(\w+)", f.read_text(), re.IGNORECASE))
+        for f in files
+    }
+    ordered: list[Path] = [f for f in files if f.stem.endswith("_pkg")]
+    pending = [f for f in files if not f.stem.endswith("_pkg")]
+    while pending:
+        done = {f.stem for f in ordered}
+        ready = [f for f in pending if uses[f.stem] <= done]
+        assert ready, f"circular or unknown instantiation among {[f.name for f in pending]}"
+        ordered += ready
+        pending = [f for f in pending if f not in ready]
+    return ordered
 
 
 def test_seed(name: str) -> int:

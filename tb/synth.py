@@ -107,14 +107,39 @@ def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     return cells
 
 
+def summary(cells: dict[str, int]) -> dict[str, int]:
+    """Totals by kind: LUTs (INV counted as LUT1), flip-flops, CARRY4,
+    block RAM in RAMB18 equivalents, DSPs, SRL shift registers, logic levels."""
+
+    def total(pattern: str) -> int:
+        return sum(n for c, n in cells.items() if re.match(pattern, c))
+
+    return {
+        "lut": total(r"^(LUT[1-6]|INV)$"),
+        "ff": total(r"^FD"),
+        "carry4": total(r"^CARRY4$"),
+        "bram18_equiv": total(r"^RAMB18") + 2 * total(r"^RAMB36"),
+        "dsp": total(r"^DSP"),
+        "srl": total(r"^SRL"),
+        "logic_levels": cells["logic_levels"],
+    }
+
+
 def entities() -> list[str]:
     """Every entity under rtl/ (one per file, named like the file)."""
     return [f.stem for f in rtl_sources() if not f.stem.endswith("_pkg")]
 
 
 if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit("usage: synth.py ENTITY [GENERIC=VALUE ...] [--cells]")
     name, *args = sys.argv[1:]
-    gens = dict(a.split("=", 1) for a in args)
+    gens = dict(a.split("=", 1) for a in args if "=" in a)
     path, _ = ghdl_synth(name, gens)
-    for cell, count in sorted(yosys_xc7(path, name).items()):
-        print(f"{cell:12s} {count}")
+    cells = yosys_xc7(path, name)
+    if "--cells" in args:
+        for cell, count in sorted(cells.items()):
+            print(f"{cell:12s} {count}")
+    config = " ".join(f"{k}={v}" for k, v in gens.items()) or "default generics"
+    figures = "  ".join(f"{k} {v}" for k, v in summary(cells).items())
+    print(f"{name} ({config}): {figures}")

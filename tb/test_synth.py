@@ -3,7 +3,7 @@ without latches and with at most 4 logic levels between registers (yosys
 synth_xilinx), and the memories land in block RAM."""
 
 import pytest
-from synth import entities, ghdl_synth, yosys_xc7
+from synth import entities, ghdl_synth, summary, yosys_xc7
 
 LATCHES = ("LDCE", "LDPE")
 # The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
@@ -24,6 +24,18 @@ def test_entity_synthesizes_without_latches(entity):
     assert not any(cells.get(c) for c in LATCHES), f"latches: {cells}"
     assert sum(cells.values()) > 0
     assert cells["logic_levels"] <= MAX_LOGIC_LEVELS, f"logic levels: {cells}"
+
+
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_detector_1920(score):
+    """The FAST detector at MAX_WIDTH 1920: at most 4 logic levels, the line
+    buffer in block RAM (three RAMB36), no LUT RAM, no latches."""
+    netlist, messages = ghdl_synth("fastnms_fast_detector", {"MAX_WIDTH": 1920, "SCORE": score})
+    cells = yosys_xc7(netlist, "fastnms_fast_detector")
+    print(score, summary(cells))
+    assert cells["logic_levels"] <= MAX_LOGIC_LEVELS, cells
+    assert bram18_equivalents(cells) == 6, cells
+    assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
 
 
 def test_line_buffer_1920_is_block_ram():

@@ -24,9 +24,10 @@
 --             any frame (dropped) and on each pixel of a frame whose size is
 --             outside WINDOW..MAX_WIDTH x WINDOW..MAX_HEIGHT (dropped).
 --
--- Handshake: the whole pipeline advances when out_ready = '1' or no output is
--- held, so in_ready depends on out_ready through one gate. Put a skid buffer
--- behind this block if its consumer's ready is not a register.
+-- Handshake: the whole pipeline advances exactly on the clocks with
+-- out_ready = '1' (a beat transfers when out_valid is also high), so
+-- in_ready depends on out_ready through one gate. Put a skid buffer behind
+-- this block if its consumer's ready is not a register.
 --
 -- Logic depth: every decision is taken from registers. Pixels enter an input
 -- register first; the counters reset through the flip-flops' synchronous
@@ -167,7 +168,9 @@ begin
     report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be at least WINDOW"
     severity failure;
 
-  advance <= out_ready or not tokens(TOKEN_LAST).valid;
+  -- The pipeline moves whenever the consumer is ready: out_ready is the
+  -- advance enable (no bubble is squeezed out while it is low).
+  advance <= out_ready;
 
   -- A start of frame inside a frame first resets the input side (one clock).
   restart <= a_valid and a_sof and in_active;

@@ -8,9 +8,8 @@ import random
 
 import cocotb
 import numpy as np
-from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, RisingEdge
-from stream import StreamSink, StreamSource, value
+from cocotb.triggers import ClockCycles
+from video import PERIOD_NS, VideoTB, frame_beats, split_frames
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -21,85 +20,23 @@ LATENCY = GENERICS["READ_LATENCY"]
 R = WINDOW // 2
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
-PERIOD_NS = 10
 
 
-def frame_beats(img: np.ndarray) -> list[dict[str, int]]:
-    """The input beats of a well-formed frame."""
-    h, w = img.shape
-    return [
-        {"data": int(img[y, x]), "sof": int(x == 0 and y == 0), "eol": int(x == w - 1)}
-        for y in range(h)
-        for x in range(w)
-    ]
-
-
-class TB:
+class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        self.dut = dut
-        self.rng = random.Random(cocotb.RANDOM_SEED)
-        self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
-        dut._log.info(
-            "seed=%d idle=%.2f stall=%.2f generics=%s", cocotb.RANDOM_SEED, idle, stall, GENERICS
-        )
-        cocotb.start_soon(Clock(dut.clk, PERIOD_NS, unit="ns").start())
-        self.source = StreamSource(dut, dut.clk, "in", self.rng, idle)
-        self.sink = StreamSink(
-            dut, dut.clk, "out", ["window", "inside", "sof", "eol"], self.rng, stall
-        )
-        self.err_line = 0
-        self.err_frame = 0
+        super().__init__(dut, ["window", "inside", "sof", "eol"], idle, stall)
+        dut._log.info("generics %s", GENERICS)
         self.set_size(WINDOW, WINDOW)
-        self.running = False
-
-    async def _count_errors(self):
-        while True:
-            await RisingEdge(self.dut.clk)
-            self.err_line += value(self.dut.err_line)
-            self.err_frame += value(self.dut.err_frame)
 
     def set_size(self, width: int, height: int) -> None:
-        self.dut.cfg_width.value = width
-        self.dut.cfg_height.value = height
-
-    async def reset(self):
-        self.dut.rst.value = 1
-        self.dut.in_valid.value = 0
-        await ClockCycles(self.dut.clk, 3)
-        self.dut.rst.value = 0
-        await RisingEdge(self.dut.clk)
-        if not self.running:  # monitors start once outputs are defined
-            self.running = True
-            cocotb.start_soon(self.sink.run())
-            cocotb.start_soon(self._count_errors())
+        self.set_cfg(width=width, height=height)
 
     def random_image(self, width: int, height: int) -> np.ndarray:
         return self.np_rng.integers(0, 2**DATA_WIDTH, (height, width), dtype=np.int64)
 
-    async def send_frames(self, images: list[np.ndarray]) -> None:
-        """Send frames back to back; each frame's size is set on the
-        configuration ports once the previous frame's start was taken."""
-        self.set_size(images[0].shape[1], images[0].shape[0])
-        await ClockCycles(self.dut.clk, 2)  # the documented set-up time
-        for i, img in enumerate(images):
-            nxt = images[i + 1] if i + 1 < len(images) else img
-
-            def after(k, nxt=nxt):
-                if k == 0:
-                    self.set_size(nxt.shape[1], nxt.shape[0])
-
-            await self.source.send(frame_beats(img), on_accept=after)
-
-    async def wait_beats(self, count: int, budget_cycles: int) -> None:
-        """Wait until the sink holds `count` beats; fail after the budget."""
-        for _ in range(budget_cycles):
-            if len(self.sink.beats) >= count:
-                break
-            await RisingEdge(self.dut.clk)
-        await ClockCycles(self.dut.clk, 20)  # anything extra would show up now
-        self.dut._log.info("frame lengths %s", [len(f) for f in split_frames(self.sink.beats)])
-        assert len(self.sink.beats) == count, (
-            f"expected {count} output beats, got {len(self.sink.beats)}"
+    async def send_images(self, images: list[np.ndarray]) -> None:
+        await self.send_frames(
+            images, [{"width": i.shape[1], "height": i.shape[0]} for i in images]
         )
 
 
@@ -131,15 +68,6 @@ def check_frame(
             assert np.array_equal(got, want), f"{where}: window\n{got}\n!=\n{want}"
 
 
-def split_frames(beats: list[dict[str, int]]) -> list[list[dict[str, int]]]:
-    frames: list[list[dict[str, int]]] = []
-    for beat in beats:
-        if beat["sof"] or not frames:
-            frames.append([])
-        frames[-1].append(beat)
-    return frames
-
-
 def random_size(rng: random.Random) -> tuple[int, int]:
     widths = [WINDOW, WINDOW + 1, MAX_WIDTH, rng.randrange(WINDOW, MAX_WIDTH + 1, 2)]
     heights = [WINDOW, WINDOW + 1, rng.randrange(WINDOW, min(MAX_HEIGHT, 3 * WINDOW) + 1)]
@@ -155,7 +83,7 @@ async def random_frames(dut):
     sizes += [random_size(tb.rng) for _ in range(6)]
     images = [tb.random_image(w, h) for w, h in sizes]
     dut._log.info("frame sizes %s", sizes)
-    await tb.send_frames(images)
+    await tb.send_images(images)
     total = sum(img.size for img in images)
     await tb.wait_beats(total, 20 * total + 1000)
     frames = split_frames(tb.sink.beats)
@@ -174,7 +102,7 @@ async def tallest_frame(dut):
     tb = TB(dut)
     await tb.reset()
     img = tb.random_image(MAX_WIDTH, height)
-    await tb.send_frames([img])
+    await tb.send_images([img])
     await tb.wait_beats(img.size, 20 * img.size + 1000)
     check_frame(img, tb.sink.beats, f"{MAX_WIDTH}x{height}")
 
@@ -188,7 +116,7 @@ async def throughput(dut):
     await tb.reset()
     width, height, count = min(MAX_WIDTH, 20), WINDOW + 3, 3
     images = [tb.random_image(width, height) for _ in range(count)]
-    await tb.send_frames(images)
+    await tb.send_images(images)
     total = count * width * height
     await tb.wait_beats(total, 4 * total)
     cycles = (tb.sink.times[-1] - tb.source.accept_times[0]) // PERIOD_NS

@@ -1,0 +1,264 @@
+-- FAST-9/16 corner detector: a stream of 8-bit pixels in, one result per
+-- pixel out, bit-exact with OpenCV's cv::FAST (TYPE_9_16) segment test and,
+-- with SCORE = "opencv", its corner score; SCORE = "sad" gives the paper's
+-- sum-of-absolute-differences score instead.
+--
+-- Output: one beat per input pixel, in raster order, with out_sof on pixel
+-- (0, 0) and out_eol on the last pixel of each line. out_corner = '1' and
+-- out_score = the score (8 bits for opencv, 12 for sad) at a corner;
+-- out_corner = '0' and out_score = 0 on the 3-pixel border and wherever the
+-- segment test fails.
+--
+-- Input: pixels in raster order with in_sof on the first pixel of a frame and
+-- in_eol on the last pixel of each line. cfg_width (7..MAX_WIDTH) and
+-- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame pixel and
+-- must be stable for the two clocks before it is accepted; cfg_threshold
+-- (0..255) is sampled when the start-of-frame pixel is accepted. err_line and
+-- err_frame flag malformed input (see fastnms_window); the block never stalls
+-- on it and the next well-formed frame is exact.
+--
+-- Pipeline, one pixel per clock, all stages under one advance enable that is
+-- the output skid buffer's registered ready:
+--   window generator -> circle differences -> segment test (3 stages)
+--                                          -> score (7 stages) -> mask -> skid buffer
+-- The result of pixel k leaves LATENCY clocks after pixel k + 3*W + 3 was
+-- accepted (see docs/fast_detector.md).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+  use work.fastnms_fast_pkg.all;
+
+entity fastnms_fast_detector is
+  generic (
+    MAX_WIDTH    : positive := 1920;
+    MAX_HEIGHT   : positive := 4095;
+    SCORE        : string   := "opencv";
+    READ_LATENCY : positive := 1
+  );
+  port (
+    clk           : in    std_logic;
+    rst           : in    std_logic;
+    cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    cfg_threshold : in    unsigned(7 downto 0);
+    in_valid      : in    std_logic;
+    in_ready      : out   std_logic;
+    in_data       : in    std_logic_vector(7 downto 0);
+    in_sof        : in    std_logic;
+    in_eol        : in    std_logic;
+    out_valid     : out   std_logic;
+    out_ready     : in    std_logic;
+    out_corner    : out   std_logic;
+    out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
+    out_sof       : out   std_logic;
+    out_eol       : out   std_logic;
+    err_line      : out   std_logic;
+    err_frame     : out   std_logic
+  );
+end entity fastnms_fast_detector;
+
+architecture rtl of fastnms_fast_detector is
+
+  constant SEGMENT_STAGES : positive := 3;
+  constant SCORE_STAGES   : positive := 7;
+  -- Stages after the window generator: circle differences, then the score.
+  constant STAGES     : positive := 1 + SCORE_STAGES;
+  constant SCORE_BITS : positive := score_width(SCORE);
+
+  -- Markers of a beat in flight beside its data.
+  type token_t is record
+    valid  : std_logic;
+    inside : std_logic;
+    sof    : std_logic;
+    eol    : std_logic;
+  end record token_t;
+
+  type tokens_t is array (1 to STAGES) of token_t;
+
+  signal advance  : std_logic;
+  signal ready    : std_logic;
+  signal w_valid  : std_logic;
+  signal w_window : std_logic_vector(WINDOW_SIZE * WINDOW_SIZE * 8 - 1 downto 0);
+  signal w_inside : std_logic;
+  signal w_sof    : std_logic;
+  signal w_eol    : std_logic;
+
+  -- Threshold of the frame being received, and of the frame being scored.
+  signal threshold_in  : byte_t;
+  signal threshold_cur : byte_t;
+
+  signal above    : circle_flags_t;
+  signal below    : circle_flags_t;
+  signal brighter : circle_bytes_t;
+  signal darker   : circle_bytes_t;
+  signal corner   : std_logic;
+  signal corners  : std_logic_vector(SEGMENT_STAGES + 2 to STAGES);
+  signal scores   : unsigned(SCORE_BITS - 1 downto 0);
+  signal tokens   : tokens_t;
+
+  signal result_corner : std_logic;
+  signal result        : std_logic_vector(SCORE_BITS + 2 downto 0);
+  signal skid_out      : std_logic_vector(SCORE_BITS + 2 downto 0);
+
+begin
+
+  assert SCORE = OPENCV_SCORE or SCORE = SAD_SCORE
+    report "fastnms_fast_detector: SCORE must be ""opencv"" or ""sad"""
+    severity failure;
+
+  window : entity work.fastnms_window
+    generic map (
+      MAX_WIDTH    => MAX_WIDTH,
+      MAX_HEIGHT   => MAX_HEIGHT,
+      WINDOW       => WINDOW_SIZE,
+      DATA_WIDTH   => 8,
+      READ_LATENCY => READ_LATENCY
+    )
+    port map (
+      clk        => clk,
+      rst        => rst,
+      cfg_width  => cfg_width,
+      cfg_height => cfg_height,
+      in_valid   => in_valid,
+      in_ready   => ready,
+      in_data    => in_data,
+      in_sof     => in_sof,
+      in_eol     => in_eol,
+      out_valid  => w_valid,
+      out_ready  => advance,
+      out_window => w_window,
+      out_inside => w_inside,
+      out_sof    => w_sof,
+      out_eol    => w_eol,
+      err_line   => err_line,
+      err_frame  => err_frame
+    );
+
+  in_ready <= ready;
+
+  -- A frame's threshold is taken with its first pixel and applies from its
+  -- first result on (the previous frame's results have all left the
+  -- comparisons by then).
+  thresholds : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if in_valid = '1' and ready = '1' and in_sof = '1' then
+        threshold_in <= cfg_threshold;
+      end if;
+      if advance = '1' and w_valid = '1' and w_sof = '1' then
+        threshold_cur <= threshold_in;
+      end if;
+    end if;
+
+  end process thresholds;
+
+  circle : entity work.fastnms_fast_circle
+    port map (
+      clk      => clk,
+      en       => advance,
+      window   => w_window,
+      above    => above,
+      below    => below,
+      brighter => brighter,
+      darker   => darker
+    );
+
+  segment : entity work.fastnms_fast_segment
+    port map (
+      clk       => clk,
+      en        => advance,
+      threshold => threshold_cur,
+      above     => above,
+      below     => below,
+      brighter  => brighter,
+      darker    => darker,
+      corner    => corner
+    );
+
+  opencv : if SCORE = OPENCV_SCORE generate
+
+    score_block : entity work.fastnms_fast_score_opencv
+      port map (
+        clk      => clk,
+        en       => advance,
+        above    => above,
+        below    => below,
+        brighter => brighter,
+        darker   => darker,
+        score    => scores
+      );
+
+  end generate opencv;
+
+  sad : if SCORE = SAD_SCORE generate
+
+    score_block : entity work.fastnms_fast_score_sad
+      port map (
+        clk       => clk,
+        en        => advance,
+        threshold => threshold_cur,
+        above     => above,
+        below     => below,
+        brighter  => brighter,
+        darker    => darker,
+        score     => scores
+      );
+
+  end generate sad;
+
+  -- Markers and the corner flag wait for the score.
+  delays : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if advance = '1' then
+        tokens(1) <= (valid => w_valid, inside => w_inside, sof => w_sof, eol => w_eol);
+        for stage in 2 to STAGES loop
+          tokens(stage) <= tokens(stage - 1);
+        end loop;
+        -- corner is level with tokens(1 + SEGMENT_STAGES).
+        corners(SEGMENT_STAGES + 2) <= corner;
+        for stage in SEGMENT_STAGES + 3 to STAGES loop
+          corners(stage) <= corners(stage - 1);
+        end loop;
+      end if;
+
+      if rst = '1' then
+        for stage in 1 to STAGES loop
+          tokens(stage).valid <= '0';
+        end loop;
+      end if;
+    end if;
+
+  end process delays;
+
+  result_corner <= corners(STAGES) and tokens(STAGES).inside;
+  result        <= tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
+                   std_logic_vector(scores) when result_corner = '1' else
+                   tokens(STAGES).sof & tokens(STAGES).eol & '0' & (SCORE_BITS - 1 downto 0 => '0');
+
+  output_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => SCORE_BITS + 3
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => tokens(STAGES).valid,
+      in_ready  => advance,
+      in_data   => result,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => skid_out
+    );
+
+  out_sof    <= skid_out(SCORE_BITS + 2);
+  out_eol    <= skid_out(SCORE_BITS + 1);
+  out_corner <= skid_out(SCORE_BITS);
+  out_score  <= unsigned(skid_out(SCORE_BITS - 1 downto 0));
+
+end architecture rtl;

@@ -1,0 +1,123 @@
+"""cocotb testbench of fastnms_fast_detector: every pixel's corner flag and
+score against the golden model (fastnms.fast.fast_maps)."""
+
+from __future__ import annotations
+
+import ast
+import json
+import os
+from pathlib import Path
+
+import cocotb
+import numpy as np
+import testimages
+from fastnms.fast import fast_maps
+from video import PERIOD_NS, VideoTB, split_frames
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+MAX_HEIGHT = GENERICS.get("MAX_HEIGHT", 4095)
+SCORE = GENERICS["SCORE"]
+LATENCY = GENERICS.get("READ_LATENCY", 1)
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+THRESHOLDS = [0, 1, 10, 20, 50, 128, 254, 255]
+# Clocks from the acceptance of pixel k + 3*W + 3 to the transfer of result k.
+RESULT_LATENCY = LATENCY + 11
+
+
+class TB(VideoTB):
+    def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
+        super().__init__(dut, ["corner", "score", "sof", "eol"], idle, stall)
+        dut._log.info("generics %s", GENERICS)
+        self.set_cfg(width=7, height=7, threshold=0)
+
+    async def run_frames(self, frames: list[tuple[np.ndarray, int]], label: str) -> None:
+        """Send (image, threshold) frames back to back and check every result."""
+        images = [img for img, _ in frames]
+        cfgs = [{"width": i.shape[1], "height": i.shape[0], "threshold": t} for i, t in frames]
+        await self.send_frames(images, cfgs)
+        total = sum(img.size for img in images)
+        await self.wait_beats(total, int(total * 6 / max(0.05, 1 - max(IDLE, STALL))) + 2000)
+        out = split_frames(self.sink.beats)
+        assert len(out) == len(frames), f"{len(out)} frames out of {len(frames)}"
+        for i, ((img, t), beats) in enumerate(zip(frames, out, strict=True)):
+            check_frame(img, t, beats, f"{label} frame {i} ({img.shape[1]}x{img.shape[0]} t={t})")
+        assert self.err_line == 0 and self.err_frame == 0
+
+
+def check_frame(img: np.ndarray, threshold: int, beats: list[dict], label: str) -> None:
+    """Markers, corner mask and score map of one frame, exactly."""
+    h, w = img.shape
+    assert len(beats) == w * h, f"{label}: {len(beats)} beats"
+    sof = np.array([b["sof"] for b in beats]).reshape(h, w)
+    eol = np.array([b["eol"] for b in beats]).reshape(h, w)
+    got_corner = np.array([b["corner"] for b in beats], dtype=bool).reshape(h, w)
+    got_score = np.array([b["score"] for b in beats], dtype=np.int64).reshape(h, w)
+    want_corner, want_score = fast_maps(img.astype(np.uint8), threshold, SCORE)
+    want_sof = np.zeros((h, w), dtype=int)
+    want_sof[0, 0] = 1
+    want_eol = np.zeros((h, w), dtype=int)
+    want_eol[:, -1] = 1
+    assert np.array_equal(sof, want_sof), f"{label}: sof markers"
+    assert np.array_equal(eol, want_eol), f"{label}: eol markers"
+    bad = np.argwhere((got_corner != want_corner) | (got_score != want_score))
+    if len(bad):
+        y, x = bad[0]
+        raise AssertionError(
+            f"{label}: {len(bad)} pixels differ; first at (x={x}, y={y}): "
+            f"rtl corner={int(got_corner[y, x])} score={got_score[y, x]}, "
+            f"golden corner={int(want_corner[y, x])} score={want_score[y, x]}"
+        )
+
+
+def generated_frames(tb: TB) -> list[tuple[np.ndarray, int]]:
+    """Every pattern at every threshold, in sizes from 7x7 to MAX_WIDTH wide."""
+    rng = tb.np_rng
+    sizes = [(7, 7), (8, 8), (MAX_WIDTH, 9), (9, 7), (7, 12), (MAX_WIDTH - 1 | 1, 8)]
+    sizes += [(int(rng.integers(7, MAX_WIDTH + 1)), int(rng.integers(7, 16))) for _ in range(4)]
+    frames = []
+    for i, threshold in enumerate(THRESHOLDS * 2):
+        pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]
+        width, height = sizes[i % len(sizes)]
+        frames.append((pattern(rng, width, height), threshold))
+    return frames
+
+
+@cocotb.test()
+async def generated_images(dut):
+    """Noise, blurred noise, saturated, checkerboard, single pixels, constant,
+    at thresholds 0..255, back to back with changing sizes and thresholds."""
+    tb = TB(dut)
+    await tb.reset()
+    await tb.run_frames(generated_frames(tb), "generated")
+
+
+@cocotb.test()
+async def real_images(dut):
+    """Crops of real photographs (TB_CROPS: JSON list of [path, w, h, t])."""
+    crops = json.loads(os.environ.get("TB_CROPS", "[]"))
+    assert crops, "no crops given in TB_CROPS"
+    tb = TB(dut)
+    await tb.reset()
+    frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
+    for img, t in frames:
+        dut._log.info("crop %dx%d t=%d", img.shape[1], img.shape[0], t)
+    await tb.run_frames(frames, "photo")
+
+
+@cocotb.test()
+async def throughput(dut):
+    """No gaps, no stalls: the last of N frames of W x H leaves
+    N*W*H + 3*W + 3 + RESULT_LATENCY - 1 clocks after the first pixel."""
+    tb = TB(dut, idle=0.0, stall=0.0)
+    await tb.reset()
+    width, height, count = min(MAX_WIDTH, 40), 12, 3
+    frames = [(testimages.blurred_noise(tb.np_rng, width, height), 10) for _ in range(count)]
+    await tb.run_frames(frames, "throughput")
+    cycles = (tb.sink.times[-1] - tb.source.accept_times[0]) // PERIOD_NS
+    expected = count * width * height + 3 * width + 3 + RESULT_LATENCY - 1
+    dut._log.info(
+        "%d frames of %dx%d: %d cycles, expected %d", count, width, height, cycles, expected
+    )
+    assert cycles == expected

@@ -1,0 +1,66 @@
+"""pytest entry: fastnms_fast_detector under GHDL, both scores, against the golden."""
+
+import json
+
+import pytest
+import testimages
+from harness import run_cocotb
+
+SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 1}
+PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 4095, "READ_LATENCY": 2}
+CROP_SIZES = [(128, 96), (160, 120), (200, 150), (320, 240), (176, 144), (256, 192)]
+
+
+def crops(thresholds):
+    images = testimages.real_images()
+    assert len(images) >= 6, images
+    picked = images[:: max(1, len(images) // 6)][:6]
+    return [
+        [str(path), w, h, t]
+        for i, (path, (w, h)) in enumerate(zip(picked, CROP_SIZES, strict=True))
+        for t in thresholds[i % len(thresholds) :][:1]
+    ]
+
+
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+@pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
+def test_detector_generated(request, score, idle, stall):
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {**SMALL, "SCORE": score},
+        testcase="generated_images,throughput",
+        name=request.node.nodeid,
+        env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
+
+
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_detector_photos(request, score):
+    cases = crops([10, 20, 50])
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {**PHOTO, "SCORE": score},
+        testcase="real_images",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.1", "TB_CROPS": json.dumps(cases)},
+    )
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_detector_full_kitti_frame(request, score):
+    """A whole 1241x376 KITTI frame at MAX_WIDTH 1920 (needs ../shared/images)."""
+    kitti = [p for p in testimages.shared_images() if "kitti" in p.name and "1241x376" in p.name]
+    if not kitti:
+        pytest.skip("no 1241x376 KITTI frame in ../shared/images")
+    cases = [[str(kitti[0]), 1241, 376, 20]]
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {"MAX_WIDTH": 1920, "SCORE": score},
+        testcase="real_images",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.05", "TB_STALL": "0.05", "TB_CROPS": json.dumps(cases)},
+    )
