@@ -18,6 +18,13 @@ package fastnms_pkg is
   -- maps to two levels of LUTs instead of a carry chain.
   function at_least (x : unsigned; c : natural) return std_logic;
 
+  -- '1' when x = c, as an AND of bit tests rather than a comparator.
+  function equals (x : unsigned; c : natural) return std_logic;
+
+  -- '1' when a > b (same length), as a chain of gates: it maps to LUTs only,
+  -- leaving the carry chains to the subtractors beside it.
+  function greater (a : unsigned; b : unsigned) return std_logic;
+
 end package fastnms_pkg;
 
 package body fastnms_pkg is
@@ -68,5 +75,36 @@ package body fastnms_pkg is
     end loop;
     return ge;
   end function at_least;
+
+  function equals (x : unsigned; c : natural) return std_logic is
+    constant CV : unsigned(x'length - 1 downto 0) := to_unsigned(c, x'length);
+    variable xv : unsigned(x'length - 1 downto 0);
+    variable eq : std_logic                       := '1';
+  begin
+    xv := x;
+    for i in 0 to x'length - 1 loop
+
+      if CV(i) = '1' then
+        eq := eq and xv(i);
+      else
+        eq := eq and not xv(i);
+      end if;
+
+    end loop;
+    return eq;
+  end function equals;
+
+  function greater (a : unsigned; b : unsigned) return std_logic is
+    variable av : unsigned(a'length - 1 downto 0);
+    variable bv : unsigned(b'length - 1 downto 0);
+    variable gt : std_logic := '0'; -- a(i-1 downto 0) > b(i-1 downto 0)
+  begin
+    av := a;
+    bv := b;
+    for i in 0 to a'length - 1 loop
+      gt := (av(i) and not bv(i)) or (not (av(i) xor bv(i)) and gt);
+    end loop;
+    return gt;
+  end function greater;
 
 end package body fastnms_pkg;

@@ -125,6 +125,10 @@ architecture rtl of fastnms_window is
   signal in_x_last : std_logic; -- in_x = W - 1
   signal in_y_last : std_logic; -- in_y = H - 1
   signal at_start  : std_logic; -- (in_x, in_y) = (R, R): the first window's pixel
+  -- min(in_x, R) and min(in_y, R + 1): small counters that find (R, R)
+  -- without comparing the wide ones.
+  signal near_x    : unsigned(bits_for(R + 1) - 1 downto 0);
+  signal near_y    : unsigned(bits_for(R + 1) - 1 downto 0);
   signal in_limits : limits_t;
 
   -- Output side: position of the next beat of the frame being emitted.
@@ -280,6 +284,8 @@ begin
           in_x_last <= '0';
           in_y_last <= '0';
           at_start  <= '0';
+          near_x    <= (others => '0');
+          near_y    <= (others => '0');
         elsif take = '1' and counted = '0' then
           -- A pixel outside any frame, or of a frame with a bad size.
           err_frame <= '1';
@@ -290,16 +296,24 @@ begin
             in_limits <= a_limits;
           end if;
           err_line <= in_x_last xor a_eol;
-          at_start <= to_sl(in_x = R - 1 and in_y = R);
+          at_start <= to_sl(near_x = R - 1 and near_y = R);
           if in_x_last = '1' then
             in_x_last <= '0';
+            near_x    <= (others => '0');
             in_y_last <= to_sl(in_y = in_limits.h_last_m1);
+            if near_y /= R + 1 then
+              near_y <= near_y + 1;
+            end if;
             if in_y_last = '1' then
               in_active <= '0';
               in_y_last <= '0';
+              near_y    <= (others => '0');
             end if;
           else
             in_x_last <= to_sl(in_x = in_limits.w_last_m1) and not a_sof;
+            if near_x /= R then
+              near_x <= near_x + 1;
+            end if;
           end if;
         end if;
       end if;
@@ -309,6 +323,8 @@ begin
         in_x_last <= '0';
         in_y_last <= '0';
         at_start  <= '0';
+        near_x    <= (others => '0');
+        near_y    <= (others => '0');
         err_line  <= '0';
         err_frame <= '0';
       end if;

@@ -62,10 +62,11 @@ end entity fastnms_fast_detector;
 
 architecture rtl of fastnms_fast_detector is
 
+  constant CIRCLE_STAGES  : positive := 2;
   constant SEGMENT_STAGES : positive := 3;
-  constant SCORE_STAGES   : positive := 7;
+  constant SCORE_STAGES   : positive := score_latency(SCORE);
   -- Stages after the window generator: circle differences, then the score.
-  constant STAGES     : positive := 1 + SCORE_STAGES;
+  constant STAGES     : positive := CIRCLE_STAGES + SCORE_STAGES;
   constant SCORE_BITS : positive := score_width(SCORE);
 
   -- Markers of a beat in flight beside its data.
@@ -90,14 +91,13 @@ architecture rtl of fastnms_fast_detector is
   signal threshold_in  : byte_t;
   signal threshold_cur : byte_t;
 
-  signal above    : circle_flags_t;
-  signal below    : circle_flags_t;
-  signal brighter : circle_bytes_t;
-  signal darker   : circle_bytes_t;
-  signal corner   : std_logic;
-  signal corners  : std_logic_vector(SEGMENT_STAGES + 2 to STAGES);
-  signal scores   : unsigned(SCORE_BITS - 1 downto 0);
-  signal tokens   : tokens_t;
+  signal above   : circle_flags_t;
+  signal below   : circle_flags_t;
+  signal diff    : circle_bytes_t;
+  signal corner  : std_logic;
+  signal corners : std_logic_vector(CIRCLE_STAGES + SEGMENT_STAGES + 1 to STAGES);
+  signal scores  : unsigned(SCORE_BITS - 1 downto 0);
+  signal tokens  : tokens_t;
 
   signal result_corner : std_logic;
   signal result        : std_logic_vector(SCORE_BITS + 2 downto 0);
@@ -158,13 +158,12 @@ begin
 
   circle : entity work.fastnms_fast_circle
     port map (
-      clk      => clk,
-      en       => advance,
-      window   => w_window,
-      above    => above,
-      below    => below,
-      brighter => brighter,
-      darker   => darker
+      clk    => clk,
+      en     => advance,
+      window => w_window,
+      above  => above,
+      below  => below,
+      diff   => diff
     );
 
   segment : entity work.fastnms_fast_segment
@@ -174,8 +173,7 @@ begin
       threshold => threshold_cur,
       above     => above,
       below     => below,
-      brighter  => brighter,
-      darker    => darker,
+      diff      => diff,
       corner    => corner
     );
 
@@ -183,13 +181,12 @@ begin
 
     score_block : entity work.fastnms_fast_score_opencv
       port map (
-        clk      => clk,
-        en       => advance,
-        above    => above,
-        below    => below,
-        brighter => brighter,
-        darker   => darker,
-        score    => scores
+        clk   => clk,
+        en    => advance,
+        above => above,
+        below => below,
+        diff  => diff,
+        score => scores
       );
 
   end generate opencv;
@@ -203,8 +200,7 @@ begin
         threshold => threshold_cur,
         above     => above,
         below     => below,
-        brighter  => brighter,
-        darker    => darker,
+        diff      => diff,
         score     => scores
       );
 
@@ -220,9 +216,9 @@ begin
         for stage in 2 to STAGES loop
           tokens(stage) <= tokens(stage - 1);
         end loop;
-        -- corner is level with tokens(1 + SEGMENT_STAGES).
-        corners(SEGMENT_STAGES + 2) <= corner;
-        for stage in SEGMENT_STAGES + 3 to STAGES loop
+        -- corner is level with tokens(CIRCLE_STAGES + SEGMENT_STAGES).
+        corners(CIRCLE_STAGES + SEGMENT_STAGES + 1) <= corner;
+        for stage in CIRCLE_STAGES + SEGMENT_STAGES + 2 to STAGES loop
           corners(stage) <= corners(stage - 1);
         end loop;
       end if;

@@ -98,6 +98,11 @@ package fastnms_fast_pkg is
   -- Circle index k + n, wrapped.
   function wrap (k : natural; n : natural) return natural;
 
+  -- Entry k: the AND of flags k, k + step and k + 2 * step (cyclic). Applied
+  -- with step 1 and then 3 it gives, for each arc start k, the AND of the 9
+  -- flags of arc k, as two levels of 3-input ANDs.
+  function triple_and (x : circle_flags_t; step : positive) return circle_flags_t;
+
   -- Bit slice of a circle pixel in a flat WINDOW_SIZE x WINDOW_SIZE window of
   -- bytes (row r, column c at slice r * WINDOW_SIZE + c).
   function circle_slice (k : natural) return natural;
@@ -108,6 +113,9 @@ package fastnms_fast_pkg is
 
   function score_width (score : string) return positive;
 
+  -- Register stages of the score blocks.
+  function score_latency (score : string) return positive;
+
 end package fastnms_fast_pkg;
 
 package body fastnms_fast_pkg is
@@ -117,10 +125,29 @@ package body fastnms_fast_pkg is
     return (k + n) mod CIRCLE_SIZE;
   end function wrap;
 
+  function triple_and (x : circle_flags_t; step : positive) return circle_flags_t is
+    variable all_set : circle_flags_t;
+  begin
+    for k in 0 to CIRCLE_SIZE - 1 loop
+      all_set(k) := x(k) and x(wrap(k, step)) and x(wrap(k, 2 * step));
+    end loop;
+    return all_set;
+  end function triple_and;
+
   function circle_slice (k : natural) return natural is
   begin
     return (RADIUS + CIRCLE(k).dy) * WINDOW_SIZE + RADIUS + CIRCLE(k).dx;
   end function circle_slice;
+
+  function score_latency (score : string) return positive is
+  begin
+
+    if score = SAD_SCORE then
+      return 8;
+    end if;
+
+    return 7;
+  end function score_latency;
 
   function score_width (score : string) return positive is
   begin

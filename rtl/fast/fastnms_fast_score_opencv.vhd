@@ -3,20 +3,19 @@
 -- minus 1. For a corner it lies in t .. 254; for a non-corner the value is
 -- meaningless (the detector masks it).
 --
--- A corner's score comes from an arc whose pixels are all on one side of the
--- centre (the arc minimum of the other side is negative). So the minima are
--- taken over the raw differences brighter(k) = c_k - v and darker(k) =
--- v - c_k, and an arc counts only when all its pixels are above (below) v:
--- there the differences are exact, and an arc cannot be both, so one OR
--- merges the two sides.
+-- A corner's score comes from an arc whose pixels all lie on one side of the
+-- centre: any other arc has a negative minimum on both sides. On such an arc
+-- c - v (or v - c) is |c - v|, so one minimum over diff(k) = |c_k - v| per
+-- arc, kept where the arc is one-sided, gives every arc's contribution.
 --
 -- Seven register stages under the shared advance enable `en`; each is at
 -- most a comparison and a selection (at most 4 levels of logic):
---   1. minima of the 16 cyclic triples (k, k+1, k+2), per polarity; the
---      comparisons of neighbouring pairs are shared between triples;
---   2. arc minima: min of the triples k, k+3, k+6, again sharing pairs;
---   3. the two sides merged (stages 1-2 also find, the same way, the arcs
---      whose pixels are all above or all below v);
+--   1. minima of the 16 cyclic triples (k, k+1, k+2); the comparisons of
+--      neighbouring pairs are shared between triples; likewise the triples
+--      whose pixels are all above (below) the centre;
+--   2. arc minima: min of the triples k, k+3, k+6, again sharing pairs, and
+--      the one-sided arcs;
+--   3. the arc minima of one-sided arcs, 0 for the others;
 --   4.-6. maximum over the 16 arcs, three at a time (16 -> 6 -> 2 -> 1);
 --   7. minus 1.
 library ieee;
@@ -28,13 +27,12 @@ library work;
 
 entity fastnms_fast_score_opencv is
   port (
-    clk      : in    std_logic;
-    en       : in    std_logic;
-    above    : in    circle_flags_t;
-    below    : in    circle_flags_t;
-    brighter : in    circle_bytes_t;
-    darker   : in    circle_bytes_t;
-    score    : out   byte_t
+    clk   : in    std_logic;
+    en    : in    std_logic;
+    above : in    circle_flags_t;
+    below : in    circle_flags_t;
+    diff  : in    circle_bytes_t;
+    score : out   byte_t
   );
 end entity fastnms_fast_score_opencv;
 
@@ -86,29 +84,12 @@ architecture rtl of fastnms_fast_score_opencv is
 
   end function max3;
 
-  -- AND of the triples (k, k + step, k + 2 * step): with step 1 and then 3,
-  -- arc k's pixels all above (below) v, alongside the minima.
-  function triple_and (x : circle_flags_t; step : positive) return circle_flags_t is
-
-    variable all_set : circle_flags_t;
-
-  begin
-
-    for k in 0 to CIRCLE_SIZE - 1 loop
-      all_set(k) := x(k) and x(wrap(k, step)) and x(wrap(k, 2 * step));
-    end loop;
-    return all_set;
-
-  end function triple_and;
-
   signal above_3  : circle_flags_t;
   signal below_3  : circle_flags_t;
   signal above_9  : circle_flags_t;
   signal below_9  : circle_flags_t;
-  signal bright_3 : circle_bytes_t;
-  signal dark_3   : circle_bytes_t;
-  signal bright_9 : circle_bytes_t;
-  signal dark_9   : circle_bytes_t;
+  signal minima_3 : circle_bytes_t;
+  signal minima_9 : circle_bytes_t;
   signal arcs     : circle_bytes_t;
   signal max_6    : bytes_t(0 to 5);
   signal max_2    : bytes_t(0 to 1);
@@ -126,15 +107,11 @@ begin
         above_9 <= triple_and(above_3, 3);
         below_9 <= triple_and(below_3, 3);
 
-        bright_3 <= triple_minima(brighter, 1);
-        dark_3   <= triple_minima(darker, 1);
-
-        bright_9 <= triple_minima(bright_3, 3);
-        dark_9   <= triple_minima(dark_3, 3);
+        minima_3 <= triple_minima(diff, 1);
+        minima_9 <= triple_minima(minima_3, 3);
 
         for k in 0 to CIRCLE_SIZE - 1 loop
-          arcs(k) <= (bright_9(k) and (7 downto 0 => above_9(k))) or
-                     (dark_9(k) and (7 downto 0   => below_9(k)));
+          arcs(k) <= minima_9(k) when above_9(k) = '1' or below_9(k) = '1' else (others => '0');
         end loop;
 
         for g in 0 to 4 loop

@@ -3,17 +3,20 @@
 -- (v - c - t)). 0 .. 4080, 12 bits. For a non-corner the value is
 -- meaningless (the detector masks it).
 --
--- Seven register stages under the shared advance enable `en`:
---   1. the 32 terms brighter(k) - t, darker(k) - t, or 0 where the pixel is
---      not brighter than centre + t (darker than centre - t);
---   2.-5. a pipelined adder tree per polarity, 16 -> 8 -> 4 -> 2 -> 1;
---   6. the comparison of the two sums;
---   7. the larger sum.
+-- Eight register stages under the shared advance enable `en`:
+--   1. per circle pixel, diff(k) - t and whether the pixel is brighter than
+--      centre + t or darker than centre - t;
+--   2. the 32 terms: diff(k) - t on the pixel's side, 0 on the other side and
+--      within the threshold;
+--   3.-6. a pipelined adder tree per side, 16 -> 8 -> 4 -> 2 -> 1;
+--   7. the comparison of the two sums;
+--   8. the larger sum.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 library work;
+  use work.fastnms_pkg.all;
   use work.fastnms_fast_pkg.all;
 
 entity fastnms_fast_score_sad is
@@ -23,8 +26,7 @@ entity fastnms_fast_score_sad is
     threshold : in    byte_t;
     above     : in    circle_flags_t;
     below     : in    circle_flags_t;
-    brighter  : in    circle_bytes_t;
-    darker    : in    circle_bytes_t;
+    diff      : in    circle_bytes_t;
     score     : out   unsigned(11 downto 0)
   );
 end entity fastnms_fast_score_sad;
@@ -33,19 +35,21 @@ architecture rtl of fastnms_fast_score_sad is
 
   subtype sum_t is unsigned(11 downto 0);
 
-  -- Partial sums of both polarities: entries 0..n-1 brighter, n..2n-1 darker.
+  -- Terms and partial sums of both sides: entries 0..n-1 brighter, n..2n-1
+  -- darker.
+  type bytes_t is array (natural range <>) of byte_t;
+
   type sums_t is array (natural range <>) of sum_t;
 
-  function saturated_term (valid : std_logic; x : byte_t; t : byte_t) return sum_t is
+  -- Entry i: x(2i) + x(2i + 1), widened.
+  function byte_pair_sums (x : bytes_t) return sums_t is
+    variable sums : sums_t(0 to x'length / 2 - 1);
   begin
-
-    if valid = '1' and x > t then
-      return resize(x - t, sum_t'length);
-    end if;
-
-    return (others => '0');
-
-  end function saturated_term;
+    for i in sums'range loop
+      sums(i) := resize(x(x'low + 2 * i), sum_t'length) + resize(x(x'low + 2 * i + 1), sum_t'length);
+    end loop;
+    return sums;
+  end function byte_pair_sums;
 
   -- Adds neighbouring pairs: entry i of the result is x(2i) + x(2i + 1).
   function pair_sums (x : sums_t) return sums_t is
@@ -61,14 +65,17 @@ architecture rtl of fastnms_fast_score_sad is
 
   end function pair_sums;
 
-  signal terms      : sums_t(0 to 2 * CIRCLE_SIZE - 1);
-  signal sums_8     : sums_t(0 to 15);
-  signal sums_4     : sums_t(0 to 7);
-  signal sums_2     : sums_t(0 to 3);
-  signal sums_1     : sums_t(0 to 1);
-  signal sum_bright : sum_t;
-  signal sum_dark   : sum_t;
-  signal bright_ge  : std_logic;
+  signal excess      : circle_bytes_t; -- diff(k) - t
+  signal terms       : bytes_t(0 to 2 * CIRCLE_SIZE - 1);
+  signal is_brighter : circle_flags_t;
+  signal is_darker   : circle_flags_t;
+  signal sums_8      : sums_t(0 to 15);
+  signal sums_4      : sums_t(0 to 7);
+  signal sums_2      : sums_t(0 to 3);
+  signal sums_1      : sums_t(0 to 1);
+  signal sum_bright  : sum_t;
+  signal sum_dark    : sum_t;
+  signal bright_ge   : std_logic;
 
 begin
 
@@ -78,11 +85,19 @@ begin
     if rising_edge(clk) then
       if en = '1' then
         for k in 0 to CIRCLE_SIZE - 1 loop
-          terms(k)               <= saturated_term(above(k), brighter(k), threshold);
-          terms(CIRCLE_SIZE + k) <= saturated_term(below(k), darker(k), threshold);
+          excess(k)      <= diff(k) - threshold;
+          is_brighter(k) <= above(k) and to_sl(diff(k) > threshold);
+          is_darker(k)   <= below(k) and to_sl(diff(k) > threshold);
         end loop;
 
-        sums_8 <= pair_sums(terms);
+        for k in 0 to CIRCLE_SIZE - 1 loop
+          terms(k)               <= excess(k) when is_brighter(k) = '1' else
+                                    (others => '0');
+          terms(CIRCLE_SIZE + k) <= excess(k) when is_darker(k) = '1' else
+                                    (others => '0');
+        end loop;
+
+        sums_8 <= byte_pair_sums(terms);
         sums_4 <= pair_sums(sums_8);
         sums_2 <= pair_sums(sums_4);
         sums_1 <= pair_sums(sums_2);

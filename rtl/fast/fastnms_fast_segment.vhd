@@ -2,9 +2,9 @@
 -- pixels are all brighter than centre + t, or all darker than centre - t.
 --
 -- Three register stages under the shared advance enable `en`:
---   1. the 32 tests above(k) and brighter(k) > t, below(k) and darker(k) > t;
---   2. for each of the 16 arc starts and both polarities, the AND of 9 flags;
---   3. the OR of the 32 arcs.
+--   1. the 32 tests above(k) and diff(k) > t, below(k) and diff(k) > t;
+--   2. the AND of each cyclic triple of flags (k, k+1, k+2), per side;
+--   3. the OR over the 32 arcs of the AND of triples k, k+3, k+6.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -20,8 +20,7 @@ entity fastnms_fast_segment is
     threshold : in    byte_t;
     above     : in    circle_flags_t;
     below     : in    circle_flags_t;
-    brighter  : in    circle_bytes_t;
-    darker    : in    circle_bytes_t;
+    diff      : in    circle_bytes_t;
     corner    : out   std_logic
   );
 end entity fastnms_fast_segment;
@@ -30,37 +29,25 @@ architecture rtl of fastnms_fast_segment is
 
   signal is_brighter : circle_flags_t;
   signal is_darker   : circle_flags_t;
-  signal arc_bright  : circle_flags_t;
-  signal arc_dark    : circle_flags_t;
+  signal bright_3    : circle_flags_t;
+  signal dark_3      : circle_flags_t;
 
 begin
 
   stages : process (clk) is
-
-    variable all_bright : std_logic;
-    variable all_dark   : std_logic;
-
   begin
 
     if rising_edge(clk) then
       if en = '1' then
         for k in 0 to CIRCLE_SIZE - 1 loop
-          is_brighter(k) <= above(k) and to_sl(brighter(k) > threshold);
-          is_darker(k)   <= below(k) and to_sl(darker(k) > threshold);
+          is_brighter(k) <= above(k) and to_sl(diff(k) > threshold);
+          is_darker(k)   <= below(k) and to_sl(diff(k) > threshold);
         end loop;
 
-        for k in 0 to CIRCLE_SIZE - 1 loop
-          all_bright := '1';
-          all_dark   := '1';
-          for n in 0 to ARC_LENGTH - 1 loop
-            all_bright := all_bright and is_brighter(wrap(k, n));
-            all_dark   := all_dark and is_darker(wrap(k, n));
-          end loop;
-          arc_bright(k) <= all_bright;
-          arc_dark(k)   <= all_dark;
-        end loop;
+        bright_3 <= triple_and(is_brighter, 1);
+        dark_3   <= triple_and(is_darker, 1);
 
-        corner <= or arc_bright or (or arc_dark);
+        corner <= or (triple_and(bright_3, 3) or triple_and(dark_3, 3));
       end if;
     end if;
 

@@ -23,7 +23,7 @@ IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 THRESHOLDS = [0, 1, 10, 20, 50, 128, 254, 255]
 # Clocks from the acceptance of pixel k + 3*W + 3 to the transfer of result k.
-RESULT_LATENCY = LATENCY + 11
+RESULT_LATENCY = LATENCY + (13 if SCORE == "sad" else 12)
 
 
 class TB(VideoTB):
