@@ -2,7 +2,8 @@
 -- WINDOW x WINDOW neighbourhoods, one output beat per pixel of the frame.
 --
 -- Output beat k of a frame is the window centred on pixel k (raster order),
--- with out_sof on pixel (0, 0) and out_eol on the last pixel of each row.
+-- with out_sof on pixel (0, 0), out_eol on the last pixel of each row,
+-- out_eof on the frame's last pixel and out_x, out_y the pixel's position.
 -- out_inside = '1' when the whole window lies in the frame (R <= x <= W-1-R,
 -- R <= y <= H-1-R, R = WINDOW/2); out_window is meaningful only then.
 -- The output runs R rows and R pixels behind the input (lockstep): the window
@@ -64,6 +65,9 @@ entity fastnms_window is
     out_inside : out   std_logic;
     out_sof    : out   std_logic;
     out_eol    : out   std_logic;
+    out_eof    : out   std_logic;
+    out_x      : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y      : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     err_line   : out   std_logic;
     err_frame  : out   std_logic
   );
@@ -91,6 +95,9 @@ architecture rtl of fastnms_window is
     inside : std_logic;
     sof    : std_logic;
     eol    : std_logic;
+    eof    : std_logic;
+    x      : x_t;
+    y      : y_t;
   end record token_t;
 
   type token_pipe_t is array (1 to TOKEN_LAST) of token_t;
@@ -131,15 +138,16 @@ architecture rtl of fastnms_window is
   signal near_y    : unsigned(bits_for(R + 1) - 1 downto 0);
   signal in_limits : limits_t;
 
-  -- Output side: position of the next beat of the frame being emitted.
+  -- Output side: position (beat_x, beat_y) of the next beat of the frame
+  -- being emitted.
   signal out_state  : out_state_t;
   signal out_busy   : std_logic; -- out_state /= idle
-  signal out_x      : x_t;
-  signal out_y      : y_t;
+  signal beat_x     : x_t;
+  signal beat_y     : y_t;
   signal out_x_last : std_logic;
   signal out_y_last : std_logic;
-  signal out_x_in   : std_logic; -- R <= out_x <= W - 1 - R
-  signal out_y_in   : std_logic; -- R <= out_y <= H - 1 - R
+  signal out_x_in   : std_logic; -- R <= beat_x <= W - 1 - R
+  signal out_y_in   : std_logic; -- R <= beat_y <= H - 1 - R
   signal out_limits : limits_t;
 
   signal advance : std_logic;
@@ -216,14 +224,14 @@ begin
         in_y <= in_y + 1;
       end if;
       if out_x_clear = '1' then
-        out_x <= (others => '0');
+        beat_x <= (others => '0');
       elsif out_x_step = '1' then
-        out_x <= out_x + 1;
+        beat_x <= beat_x + 1;
       end if;
       if out_y_clear = '1' then
-        out_y <= (others => '0');
+        beat_y <= (others => '0');
       elsif out_y_step = '1' then
-        out_y <= out_y + 1;
+        beat_y <= beat_y + 1;
       end if;
     end if;
 
@@ -340,6 +348,9 @@ begin
         tokens(1).valid  <= emit;
         tokens(1).sof    <= to_sl(out_state = idle);
         tokens(1).eol    <= out_x_last;
+        tokens(1).eof    <= out_x_last and out_y_last;
+        tokens(1).x      <= beat_x;
+        tokens(1).y      <= beat_y;
         tokens(1).inside <= out_x_in and out_y_in and to_sl(out_state = lockstep);
         for stage in 2 to TOKEN_LAST loop
           tokens(stage) <= tokens(stage - 1);
@@ -354,8 +365,8 @@ begin
           if out_x_last = '1' then
             out_x_last <= '0';
             out_x_in   <= '0';
-            out_y_last <= to_sl(out_y = out_limits.h_last_m1);
-            out_y_in   <= (out_y_in and not to_sl(out_y = out_limits.y_hi)) or to_sl(out_y = R - 1);
+            out_y_last <= to_sl(beat_y = out_limits.h_last_m1);
+            out_y_in   <= (out_y_in and not to_sl(beat_y = out_limits.y_hi)) or to_sl(beat_y = R - 1);
             if out_y_last = '1' then
               out_state  <= idle;
               out_busy   <= '0';
@@ -365,8 +376,8 @@ begin
           else
             -- Leaving idle, out_limits still hold the previous frame's values;
             -- column 0 never matches them, so the flags stay right.
-            out_x_last <= to_sl(out_x = out_limits.w_last_m1) and to_sl(out_state /= idle);
-            out_x_in   <= (out_x_in and not to_sl(out_x = out_limits.x_hi)) or to_sl(out_x = R - 1);
+            out_x_last <= to_sl(beat_x = out_limits.w_last_m1) and to_sl(out_state /= idle);
+            out_x_in   <= (out_x_in and not to_sl(beat_x = out_limits.x_hi)) or to_sl(beat_x = R - 1);
           end if;
         end if;
 
@@ -437,5 +448,8 @@ begin
   out_inside <= tokens(TOKEN_LAST).inside;
   out_sof    <= tokens(TOKEN_LAST).sof;
   out_eol    <= tokens(TOKEN_LAST).eol;
+  out_eof    <= tokens(TOKEN_LAST).eof;
+  out_x      <= tokens(TOKEN_LAST).x;
+  out_y      <= tokens(TOKEN_LAST).y;
 
 end architecture rtl;

@@ -4,7 +4,13 @@
 -- sum-of-absolute-differences score instead.
 --
 -- Output: one beat per input pixel, in raster order, with out_sof on pixel
--- (0, 0) and out_eol on the last pixel of each line. out_corner = '1' and
+-- (0, 0), out_eol on the last pixel of each line and out_eof on the frame's
+-- last pixel. out_width and out_height give the size of the frame whose
+-- first beat (out_sof) is next to leave: they change at least 10 clocks
+-- before that beat, while the previous frame's last beats may still be
+-- leaving, and hold until the next frame's first beat is on its way. A block
+-- downstream that samples them with out_sof sees a value stable for the 10
+-- clocks before. out_corner = '1' and
 -- out_score = the score (8 bits for opencv, 12 for sad) at a corner;
 -- out_corner = '0' and out_score = 0 on the 3-pixel border and wherever the
 -- segment test fails.
@@ -55,6 +61,9 @@ entity fastnms_fast_detector is
     out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
     out_sof       : out   std_logic;
     out_eol       : out   std_logic;
+    out_eof       : out   std_logic;
+    out_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    out_height    : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     err_line      : out   std_logic;
     err_frame     : out   std_logic
   );
@@ -75,6 +84,7 @@ architecture rtl of fastnms_fast_detector is
     inside : std_logic;
     sof    : std_logic;
     eol    : std_logic;
+    eof    : std_logic;
   end record token_t;
 
   type tokens_t is array (1 to STAGES) of token_t;
@@ -86,10 +96,14 @@ architecture rtl of fastnms_fast_detector is
   signal w_inside : std_logic;
   signal w_sof    : std_logic;
   signal w_eol    : std_logic;
+  signal w_eof    : std_logic;
 
-  -- Threshold of the frame being received, and of the frame being scored.
+  -- Threshold and size of the frame being received, and of the frame being
+  -- scored.
   signal threshold_in  : byte_t;
   signal threshold_cur : byte_t;
+  signal width_in      : unsigned(cfg_width'range);
+  signal height_in     : unsigned(cfg_height'range);
 
   signal above   : circle_flags_t;
   signal below   : circle_flags_t;
@@ -100,8 +114,8 @@ architecture rtl of fastnms_fast_detector is
   signal tokens  : tokens_t;
 
   signal result_corner : std_logic;
-  signal result        : std_logic_vector(SCORE_BITS + 2 downto 0);
-  signal skid_out      : std_logic_vector(SCORE_BITS + 2 downto 0);
+  signal result        : std_logic_vector(SCORE_BITS + 3 downto 0);
+  signal skid_out      : std_logic_vector(SCORE_BITS + 3 downto 0);
 
 begin
 
@@ -133,6 +147,9 @@ begin
       out_inside => w_inside,
       out_sof    => w_sof,
       out_eol    => w_eol,
+      out_eof    => w_eof,
+      out_x      => open,
+      out_y      => open,
       err_line   => err_line,
       err_frame  => err_frame
     );
@@ -148,9 +165,13 @@ begin
     if rising_edge(clk) then
       if in_valid = '1' and ready = '1' and in_sof = '1' then
         threshold_in <= cfg_threshold;
+        width_in     <= cfg_width;
+        height_in    <= cfg_height;
       end if;
       if advance = '1' and w_valid = '1' and w_sof = '1' then
         threshold_cur <= threshold_in;
+        out_width     <= width_in;
+        out_height    <= height_in;
       end if;
     end if;
 
@@ -212,7 +233,7 @@ begin
 
     if rising_edge(clk) then
       if advance = '1' then
-        tokens(1) <= (valid => w_valid, inside => w_inside, sof => w_sof, eol => w_eol);
+        tokens(1) <= (valid => w_valid, inside => w_inside, sof => w_sof, eol => w_eol, eof => w_eof);
         for stage in 2 to STAGES loop
           tokens(stage) <= tokens(stage - 1);
         end loop;
@@ -233,13 +254,14 @@ begin
   end process delays;
 
   result_corner <= corners(STAGES) and tokens(STAGES).inside;
-  result        <= tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
+  result        <= tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
                    std_logic_vector(scores) when result_corner = '1' else
-                   tokens(STAGES).sof & tokens(STAGES).eol & '0' & (SCORE_BITS - 1 downto 0 => '0');
+                   tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & '0' &
+                   (SCORE_BITS - 1 downto 0 => '0');
 
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => SCORE_BITS + 3
+      WIDTH => SCORE_BITS + 4
     )
     port map (
       clk       => clk,
@@ -252,6 +274,7 @@ begin
       out_data  => skid_out
     );
 
+  out_eof    <= skid_out(SCORE_BITS + 3);
   out_sof    <= skid_out(SCORE_BITS + 2);
   out_eol    <= skid_out(SCORE_BITS + 1);
   out_corner <= skid_out(SCORE_BITS);

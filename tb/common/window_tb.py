@@ -24,7 +24,7 @@ STALL = float(os.environ.get("TB_STALL", "0"))
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["window", "inside", "sof", "eol"], idle, stall)
+        super().__init__(dut, ["window", "inside", "sof", "eol", "eof", "x", "y"], idle, stall)
         dut._log.info("generics %s", GENERICS)
         self.set_size(WINDOW, WINDOW)
 
@@ -59,6 +59,8 @@ def check_frame(
         where = f"{label} at (x={x}, y={y})"
         assert beat["sof"] == int(k == 0), f"{where}: sof={beat['sof']}"
         assert beat["eol"] == int(x == w - 1), f"{where}: eol={beat['eol']}"
+        assert beat["eof"] == int(k == w * h - 1), f"{where}: eof={beat['eof']}"
+        assert (beat["x"], beat["y"]) == (x, y), f"{where}: position ({beat['x']}, {beat['y']})"
         if not contents:
             continue
         assert beat["inside"] == int(inside), f"{where}: inside={beat['inside']}"

@@ -28,7 +28,9 @@ RESULT_LATENCY = LATENCY + (13 if SCORE == "sad" else 12)
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["corner", "score", "sof", "eol"], idle, stall)
+        super().__init__(
+            dut, ["corner", "score", "sof", "eol", "eof", "width", "height"], idle, stall
+        )
         dut._log.info("generics %s", GENERICS)
         self.set_cfg(width=7, height=7, threshold=0)
 
@@ -61,6 +63,10 @@ def check_frame(img: np.ndarray, threshold: int, beats: list[dict], label: str) 
     want_eol[:, -1] = 1
     assert np.array_equal(sof, want_sof), f"{label}: sof markers"
     assert np.array_equal(eol, want_eol), f"{label}: eol markers"
+    eof = [b["eof"] for b in beats]
+    assert eof == [0] * (w * h - 1) + [1], f"{label}: eof markers"
+    size = (beats[0]["width"], beats[0]["height"])
+    assert size == (w, h), f"{label}: out_width/out_height {size} with out_sof"
     bad = np.argwhere((got_corner != want_corner) | (got_score != want_score))
     if len(bad):
         y, x = bad[0]
