@@ -17,14 +17,38 @@ from stream import StreamSink, StreamSource, value
 PERIOD_NS = 10
 
 
-def frame_beats(img: np.ndarray) -> list[dict[str, int]]:
-    """The input beats of a well-formed frame."""
+def frame_beats(img: np.ndarray, data: str = "data") -> list[dict[str, int]]:
+    """The input beats of a well-formed frame, the pixel in field `data`."""
     h, w = img.shape
     return [
-        {"data": int(img[y, x]), "sof": int(x == 0 and y == 0), "eol": int(x == w - 1)}
+        {data: int(img[y, x]), "sof": int(x == 0 and y == 0), "eol": int(x == w - 1)}
         for y in range(h)
         for x in range(w)
     ]
+
+
+def record_mismatch(got: list, want: list, label: str) -> str:
+    """A one-line description of how two record lists differ."""
+    for i, (g, w) in enumerate(
+        zip(got + [None] * len(want), want + [None] * len(got), strict=False)
+    ):
+        if g != w:
+            return f"{label}: rtl {len(got)} records, golden {len(want)}; #{i}: rtl {g}, golden {w}"
+    return f"{label}: equal"
+
+
+def split_records(beats: list[dict[str, int]]) -> list[list[tuple[int, int, int]]]:
+    """Record beats (x, y, score) grouped into frames, each closed by an
+    end-of-frame beat; a trailing group without its end is dropped."""
+    frames: list[list[tuple[int, int, int]]] = []
+    current: list[tuple[int, int, int]] = []
+    for beat in beats:
+        if beat["eof"]:
+            frames.append(current)
+            current = []
+        else:
+            current.append((beat["x"], beat["y"], beat["score"]))
+    return frames
 
 
 def split_frames(beats: list[dict[str, int]]) -> list[list[dict[str, int]]]:
@@ -41,8 +65,16 @@ class VideoTB:
     """A DUT with clk, rst, cfg_* ports, an `in` pixel stream, an `out`
     stream with the given fields, and err_line/err_frame pulses."""
 
-    def __init__(self, dut, out_fields: list[str], idle: float = 0.0, stall: float = 0.0):
+    def __init__(
+        self,
+        dut,
+        out_fields: list[str],
+        idle: float = 0.0,
+        stall: float = 0.0,
+        data: str = "data",
+    ):
         self.dut = dut
+        self.data = data
         self.rng = random.Random(cocotb.RANDOM_SEED)
         self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
         dut._log.info("seed=%d idle=%.2f stall=%.2f", cocotb.RANDOM_SEED, idle, stall)
@@ -88,7 +120,19 @@ class VideoTB:
                 if k == 0 and nxt is not None:
                     self.set_cfg(**nxt)
 
-            await self.source.send(frame_beats(img), on_accept=after)
+            await self.source.send(frame_beats(img, self.data), on_accept=after)
+
+    async def wait_eofs(self, count: int, budget_cycles: int) -> None:
+        """Wait until the sink holds `count` end-of-frame beats; fail after
+        the budget or on any extra beat."""
+        for _ in range(budget_cycles):
+            if sum(b["eof"] for b in self.sink.beats) >= count:
+                break
+            await RisingEdge(self.dut.clk)
+        await ClockCycles(self.dut.clk, 20)  # anything extra would show up now
+        eofs = sum(b["eof"] for b in self.sink.beats)
+        assert eofs == count, f"expected {count} end-of-frame beats, got {eofs}"
+        assert self.sink.beats[-1]["eof"], "beats after the last end of frame"
 
     async def wait_beats(self, count: int, budget_cycles: int) -> None:
         """Wait until the sink holds `count` beats; fail after the budget."""

@@ -1,0 +1,125 @@
+-- The corner pipeline without bus interfaces: FAST-9/16 detector, then
+-- non-maxima suppression. Pixels in, corner records out.
+--
+-- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule). The
+-- region NMS of the paper is not built yet.
+--
+-- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
+-- taken with the start-of-frame pixel). Output: one record per corner in
+-- raster order (out_x, out_y, out_score, out_eof = '0'), then one
+-- end-of-frame beat (out_eof = '1'), also for a frame without corners.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+  use work.fastnms_fast_pkg.all;
+
+entity fastnms_core is
+  generic (
+    MAX_WIDTH    : positive := 1920;
+    MAX_HEIGHT   : positive := 4095;
+    SCORE        : string   := "opencv";
+    NMS          : string   := "3x3";
+    READ_LATENCY : positive := 1
+  );
+  port (
+    clk           : in    std_logic;
+    rst           : in    std_logic;
+    cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    cfg_threshold : in    unsigned(7 downto 0);
+    in_valid      : in    std_logic;
+    in_ready      : out   std_logic;
+    in_data       : in    std_logic_vector(7 downto 0);
+    in_sof        : in    std_logic;
+    in_eol        : in    std_logic;
+    out_valid     : out   std_logic;
+    out_ready     : in    std_logic;
+    out_x         : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y         : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
+    out_eof       : out   std_logic;
+    err_line      : out   std_logic;
+    err_frame     : out   std_logic
+  );
+end entity fastnms_core;
+
+architecture rtl of fastnms_core is
+
+  constant SCORE_BITS : positive := score_width(SCORE);
+
+  signal d_valid  : std_logic;
+  signal d_ready  : std_logic;
+  signal d_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal d_sof    : std_logic;
+  signal d_eol    : std_logic;
+  signal d_width  : unsigned(cfg_width'range);
+  signal d_height : unsigned(cfg_height'range);
+
+begin
+
+  assert NMS = "3x3"
+    report "fastnms_core: NMS must be ""3x3"" (the region NMS is not built yet)"
+    severity failure;
+
+  detector : entity work.fastnms_fast_detector
+    generic map (
+      MAX_WIDTH    => MAX_WIDTH,
+      MAX_HEIGHT   => MAX_HEIGHT,
+      SCORE        => SCORE,
+      READ_LATENCY => READ_LATENCY
+    )
+    port map (
+      clk           => clk,
+      rst           => rst,
+      cfg_width     => cfg_width,
+      cfg_height    => cfg_height,
+      cfg_threshold => cfg_threshold,
+      in_valid      => in_valid,
+      in_ready      => in_ready,
+      in_data       => in_data,
+      in_sof        => in_sof,
+      in_eol        => in_eol,
+      out_valid     => d_valid,
+      out_ready     => d_ready,
+      out_corner    => open,
+      out_score     => d_score,
+      out_sof       => d_sof,
+      out_eol       => d_eol,
+      out_eof       => open,
+      out_width     => d_width,
+      out_height    => d_height,
+      err_line      => err_line,
+      err_frame     => err_frame
+    );
+
+  nms_3x3 : entity work.fastnms_nms_3x3
+    generic map (
+      MAX_WIDTH    => MAX_WIDTH,
+      MAX_HEIGHT   => MAX_HEIGHT,
+      SCORE_BITS   => SCORE_BITS,
+      READ_LATENCY => READ_LATENCY
+    )
+    port map (
+      clk        => clk,
+      rst        => rst,
+      cfg_width  => d_width,
+      cfg_height => d_height,
+      in_valid   => d_valid,
+      in_ready   => d_ready,
+      in_score   => d_score,
+      in_sof     => d_sof,
+      in_eol     => d_eol,
+      out_valid  => out_valid,
+      out_ready  => out_ready,
+      out_x      => out_x,
+      out_y      => out_y,
+      out_score  => out_score,
+      out_eof    => out_eof,
+      err_line   => open,
+      err_frame  => open
+    );
+
+end architecture rtl;

@@ -1,0 +1,189 @@
+-- OpenCV's 3x3 non-maxima suppression on a per-pixel score stream: a pixel
+-- survives when its score is strictly greater than each of its 8
+-- neighbours' scores (a non-corner, or a neighbour outside the image,
+-- counting as 0; equal neighbours suppress each other). Fed the detector's
+-- `opencv` scores, the survivors are exactly cv2.FAST's keypoints with
+-- nonmaxSuppression=True.
+--
+-- Input: one beat per pixel in raster order (in_sof, in_eol), in_score = 0
+-- where there is no corner (as the detector outputs). cfg_width and
+-- cfg_height are sampled with the start-of-frame pixel and must be stable
+-- for the two clocks before (the detector's out_width/out_height are).
+--
+-- Output: one record per survivor in raster order (out_x, out_y, out_score,
+-- out_eof = '0'), then one end-of-frame beat (out_eof = '1', out_x/out_y the
+-- frame's last pixel, out_score 0), also for a frame without corners.
+--
+-- Pipeline: a 3x3 window of scores (two lines in block RAM), the 8
+-- comparisons, their AND, then a skid buffer whose registered ready is the
+-- advance enable of everything before it. One pixel per clock.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_nms_3x3 is
+  generic (
+    MAX_WIDTH    : positive := 1920;
+    MAX_HEIGHT   : positive := 4095;
+    SCORE_BITS   : positive := 8;
+    READ_LATENCY : positive := 1
+  );
+  port (
+    clk        : in    std_logic;
+    rst        : in    std_logic;
+    cfg_width  : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    in_valid   : in    std_logic;
+    in_ready   : out   std_logic;
+    in_score   : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_sof     : in    std_logic;
+    in_eol     : in    std_logic;
+    out_valid  : out   std_logic;
+    out_ready  : in    std_logic;
+    out_x      : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y      : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score  : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof    : out   std_logic;
+    err_line   : out   std_logic;
+    err_frame  : out   std_logic
+  );
+end entity fastnms_nms_3x3;
+
+architecture rtl of fastnms_nms_3x3 is
+
+  subtype score_t is unsigned(SCORE_BITS - 1 downto 0);
+
+  subtype x_t is unsigned(out_x'range);
+
+  subtype y_t is unsigned(out_y'range);
+
+  constant MIDDLE : natural := 4; -- slice of (1, 1) in the 3x3 window
+
+  signal advance  : std_logic;
+  signal w_valid  : std_logic;
+  signal w_window : std_logic_vector(9 * SCORE_BITS - 1 downto 0);
+  signal w_inside : std_logic;
+  signal w_eof    : std_logic;
+  signal w_x      : x_t;
+  signal w_y      : y_t;
+
+  -- Stage 1: the centre is above each neighbour.
+  signal s1_valid  : std_logic;
+  signal s1_inside : std_logic;
+  signal s1_eof    : std_logic;
+  signal s1_above  : std_logic_vector(0 to 7);
+  signal s1_score  : score_t;
+  signal s1_x      : x_t;
+  signal s1_y      : y_t;
+
+  -- Stage 2: survivor or end of frame.
+  signal s2_valid : std_logic;
+  signal s2_keep  : std_logic;
+  signal s2_eof   : std_logic;
+  signal s2_score : score_t;
+  signal s2_x     : x_t;
+  signal s2_y     : y_t;
+
+  signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS downto 0);
+  signal record_out : std_logic_vector(record_in'range);
+
+begin
+
+  window : entity work.fastnms_window
+    generic map (
+      MAX_WIDTH    => MAX_WIDTH,
+      MAX_HEIGHT   => MAX_HEIGHT,
+      WINDOW       => 3,
+      DATA_WIDTH   => SCORE_BITS,
+      READ_LATENCY => READ_LATENCY
+    )
+    port map (
+      clk        => clk,
+      rst        => rst,
+      cfg_width  => cfg_width,
+      cfg_height => cfg_height,
+      in_valid   => in_valid,
+      in_ready   => in_ready,
+      in_data    => std_logic_vector(in_score),
+      in_sof     => in_sof,
+      in_eol     => in_eol,
+      out_valid  => w_valid,
+      out_ready  => advance,
+      out_window => w_window,
+      out_inside => w_inside,
+      out_sof    => open,
+      out_eol    => open,
+      out_eof    => w_eof,
+      out_x      => w_x,
+      out_y      => w_y,
+      err_line   => err_line,
+      err_frame  => err_frame
+    );
+
+  stages : process (clk) is
+
+    variable centre    : score_t;
+    variable neighbour : natural;
+
+  begin
+
+    if rising_edge(clk) then
+      if advance = '1' then
+        centre := unsigned(w_window(MIDDLE * SCORE_BITS + SCORE_BITS - 1 downto MIDDLE * SCORE_BITS));
+        for n in 0 to 7 loop
+          -- Slices 0..8 minus the centre.
+          neighbour   := n + n / MIDDLE;
+          s1_above(n) <= to_sl(centre > unsigned(w_window(neighbour * SCORE_BITS + SCORE_BITS - 1 downto
+                                                          neighbour * SCORE_BITS)));
+        end loop;
+        s1_valid  <= w_valid;
+        s1_inside <= w_inside;
+        s1_eof    <= w_eof;
+        s1_score  <= centre;
+        s1_x      <= w_x;
+        s1_y      <= w_y;
+
+        s2_valid <= s1_valid and ((s1_inside and (and s1_above)) or s1_eof);
+        s2_keep  <= s1_inside and (and s1_above);
+        s2_eof   <= s1_eof;
+        s2_score <= s1_score;
+        s2_x     <= s1_x;
+        s2_y     <= s1_y;
+      end if;
+
+      if rst = '1' then
+        s1_valid <= '0';
+        s2_valid <= '0';
+      end if;
+    end if;
+
+  end process stages;
+
+  record_in <= s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
+               std_logic_vector(s2_score) when s2_keep = '1' else
+               s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) & (SCORE_BITS - 1 downto 0 => '0');
+
+  output_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => record_in'length
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => s2_valid,
+      in_ready  => advance,
+      in_data   => record_in,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => record_out
+    );
+
+  out_eof   <= record_out(record_out'high);
+  out_x     <= unsigned(record_out(record_out'high - 1 downto y_t'length + SCORE_BITS));
+  out_y     <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
+  out_score <= unsigned(record_out(SCORE_BITS - 1 downto 0));
+
+end architecture rtl;

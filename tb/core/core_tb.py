@@ -1,0 +1,81 @@
+"""cocotb testbench of fastnms_core (detector + NMS): the corner records of
+each frame against the golden model's detect(), and, for opencv + 3x3,
+against cv2.FastFeatureDetector itself."""
+
+from __future__ import annotations
+
+import ast
+import json
+import os
+from pathlib import Path
+
+import cocotb
+import cv2
+import numpy as np
+import testimages
+from fastnms.model import detect
+from video import VideoTB, record_mismatch, split_records
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+SCORE = GENERICS["SCORE"]
+NMS = GENERICS["NMS"]
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+
+
+def opencv_keypoints(img: np.ndarray, threshold: int) -> list[tuple[int, int, int]]:
+    """cv2.FAST with nonmaxSuppression=True, as records sorted by y then x."""
+    fast = cv2.FastFeatureDetector_create(threshold, True, cv2.FAST_FEATURE_DETECTOR_TYPE_9_16)
+    points = [(int(k.pt[0]), int(k.pt[1]), int(k.response)) for k in fast.detect(img)]
+    return sorted(points, key=lambda p: (p[1], p[0]))
+
+
+class TB(VideoTB):
+    def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
+        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall)
+        dut._log.info("generics %s", GENERICS)
+        self.set_cfg(width=7, height=7, threshold=0)
+
+    async def run_frames(self, frames: list[tuple[np.ndarray, int]], label: str) -> None:
+        images = [img for img, _ in frames]
+        cfgs = [{"width": i.shape[1], "height": i.shape[0], "threshold": t} for i, t in frames]
+        await self.send_frames(images, cfgs)
+        total = sum(img.size for img in images)
+        await self.wait_eofs(len(frames), int(total * 6 / max(0.05, 1 - max(IDLE, STALL))) + 5000)
+        records = split_records(self.sink.beats)
+        for i, ((img, t), got) in enumerate(zip(frames, records, strict=True)):
+            name = f"{label} frame {i} ({img.shape[1]}x{img.shape[0]} t={t})"
+            want = [tuple(int(v) for v in r) for r in detect(img, t, SCORE, NMS)]
+            assert got == want, record_mismatch(got, want, name + " vs golden")
+            if SCORE == "opencv" and NMS == "3x3":
+                cv = opencv_keypoints(img, t)
+                assert got == cv, record_mismatch(got, cv, name + " vs cv2.FAST")
+            self.dut._log.info("%s: %d corners, equal", name, len(got))
+        assert self.err_line == 0 and self.err_frame == 0
+
+
+@cocotb.test()
+async def generated_images(dut):
+    """Every pattern at several thresholds, back to back, sizes 7x7 to MAX_WIDTH."""
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    sizes = [(7, 7), (MAX_WIDTH, 12), (9, 8), (int(rng.integers(7, MAX_WIDTH + 1)), 16)]
+    frames = []
+    for i, threshold in enumerate([0, 1, 10, 20, 50, 128, 254, 255, 5, 15, 30, 40]):
+        pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]
+        w, h = sizes[i % len(sizes)]
+        frames.append((pattern(rng, w, h), threshold))
+    await tb.run_frames(frames, "generated")
+
+
+@cocotb.test()
+async def real_images(dut):
+    """Crops of real photographs (TB_CROPS: JSON list of [path, w, h, t])."""
+    crops = json.loads(os.environ.get("TB_CROPS", "[]"))
+    assert crops, "no crops given in TB_CROPS"
+    tb = TB(dut)
+    await tb.reset()
+    frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
+    await tb.run_frames(frames, "photo")

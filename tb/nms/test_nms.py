@@ -1,0 +1,17 @@
+"""pytest entry: the NMS blocks under GHDL against the golden model."""
+
+import pytest
+from harness import run_cocotb
+
+
+@pytest.mark.parametrize("score_bits", [8, 12])
+@pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
+def test_nms_3x3(request, score_bits, idle, stall):
+    generics = {"MAX_WIDTH": 24, "MAX_HEIGHT": 64, "SCORE_BITS": score_bits}
+    run_cocotb(
+        "fastnms_nms_3x3",
+        "nms3x3_tb",
+        generics,
+        name=request.node.nodeid,
+        env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
