@@ -21,7 +21,7 @@ help:
 	@echo "make test-full  the same plus the 'slow' cases"
 	@echo "make sim        cocotb regression only"
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
-	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector (yosys, xc7)"
+	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector and core (yosys, xc7)"
 
 # ---- set-up ----------------------------------------------------------------
 setup: $(STAMP) check-ghdl
@@ -67,10 +67,12 @@ golden-test: setup
 synth-check: setup
 	$(PYTEST) -m "not slow" tb/test_synth.py
 
-# Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector.
+# Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector
+# and of the detector + 3x3 NMS, both scores, at 1920 pixels.
 synth-report: setup
 	@cd tb && for score in opencv sad; do \
-	  ../$(PY) synth.py fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; done
+	  ../$(PY) synth.py fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; \
+	  ../$(PY) synth.py fastnms_core MAX_WIDTH=1920 SCORE=$$score NMS=3x3; done
 
 lint: setup
 	$(VENV)/bin/ruff check --quiet .

@@ -38,6 +38,19 @@ def test_detector_1920(score):
     assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
 
 
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_core_1920(score):
+    """Detector + 3x3 NMS at MAX_WIDTH 1920: at most 4 logic levels, the six
+    pixel lines and the two score lines in block RAM (8 BRAM18-equivalents
+    with 8-bit scores, 9 with 12-bit ones), no LUT RAM, no latches."""
+    netlist, _ = ghdl_synth("fastnms_core", {"MAX_WIDTH": 1920, "SCORE": score, "NMS": "3x3"})
+    cells = yosys_xc7(netlist, "fastnms_core")
+    print(score, summary(cells))
+    assert cells["logic_levels"] <= MAX_LOGIC_LEVELS, cells
+    assert bram18_equivalents(cells) == (8 if score == "opencv" else 9), cells
+    assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
+
+
 def test_line_buffer_1920_is_block_ram():
     """Six lines of 1920 8-bit pixels (92160 bits) map to block RAM, not to
     LUTs or flip-flops."""
