@@ -27,6 +27,8 @@ help:
 setup: $(STAMP) check-ghdl
 
 $(STAMP): pyproject.toml requirements.lock
+	@python3 -c 'import sys; sys.exit(sys.version_info < (3, 11))' || { \
+	  echo "make: Python >= 3.11 is needed, found $$(python3 --version 2>&1) (Debian 12 has it: apt-get install -y python3)"; exit 1; }
 	@python3 -c 'import ensurepip, venv' 2>/dev/null || { \
 	  if [ "$$(id -u)" = 0 ]; then apt-get update -qq && apt-get install -y -qq python3-venv; \
 	  else echo "make: Python venv support is missing: run 'sudo apt-get install -y python3-venv'"; exit 1; fi; }

@@ -38,6 +38,22 @@ def real_images() -> list[Path]:
     return shared_images() or bundled_images()
 
 
+# Six crop sizes between 128x96 and 320x240.
+CROP_SIZES = [(128, 96), (160, 120), (200, 150), (320, 240), (176, 144), (256, 192)]
+
+
+def photo_crops(thresholds: list[int]) -> list[list]:
+    """Six [path, width, height, threshold] crops of different real
+    photographs, the thresholds taken in turn."""
+    images = real_images()
+    assert len(images) >= 6, images
+    picked = images[:: max(1, len(images) // 6)][:6]
+    return [
+        [str(path), w, h, thresholds[i % len(thresholds)]]
+        for i, (path, (w, h)) in enumerate(zip(picked, CROP_SIZES, strict=True))
+    ]
+
+
 def crop(path: Path, width: int, height: int) -> np.ndarray:
     """A width x height crop from the centre of a photograph (grey)."""
     img = load_grey(path)

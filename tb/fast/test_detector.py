@@ -8,18 +8,6 @@ from harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 1}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 4095, "READ_LATENCY": 2}
-CROP_SIZES = [(128, 96), (160, 120), (200, 150), (320, 240), (176, 144), (256, 192)]
-
-
-def crops(thresholds):
-    images = testimages.real_images()
-    assert len(images) >= 6, images
-    picked = images[:: max(1, len(images) // 6)][:6]
-    return [
-        [str(path), w, h, t]
-        for i, (path, (w, h)) in enumerate(zip(picked, CROP_SIZES, strict=True))
-        for t in thresholds[i % len(thresholds) :][:1]
-    ]
 
 
 @pytest.mark.parametrize("score", ["opencv", "sad"])
@@ -37,7 +25,7 @@ def test_detector_generated(request, score, idle, stall):
 
 @pytest.mark.parametrize("score", ["opencv", "sad"])
 def test_detector_photos(request, score):
-    cases = crops([10, 20, 50])
+    cases = testimages.photo_crops([10, 20, 50])
     run_cocotb(
         "fastnms_fast_detector",
         "detector_tb",
