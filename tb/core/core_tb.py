@@ -13,8 +13,9 @@ import cocotb
 import cv2
 import numpy as np
 import testimages
+from cocotb.triggers import ClockCycles
 from fastnms.model import detect
-from video import VideoTB, record_mismatch, split_records
+from video import VideoTB, frame_beats, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -79,3 +80,37 @@ async def real_images(dut):
     await tb.reset()
     frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
     await tb.run_frames(frames, "photo")
+
+
+@cocotb.test()
+async def malformed_then_good(dut):
+    """Bad input never stalls the pipeline: a frame cut after its first
+    results still ends with an end-of-frame beat, one cut earlier produces
+    nothing, stray pixels and a frame of bad size are dropped, and the frames
+    after them are exact."""
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    w, h = min(MAX_WIDTH, 20), 12
+    good = [testimages.blurred_noise(rng, w, h) for _ in range(3)]
+    cut = testimages.noise(rng, w, h)
+    tb.set_cfg(width=w, height=h, threshold=10)
+    await ClockCycles(dut.clk, 2)
+    beats = frame_beats(cut)
+    await tb.source.send(beats[: 6 * w])  # cut after its first results
+    await tb.source.send(frame_beats(good[0]))
+    await tb.source.send(beats[:w])  # cut before any result
+    await tb.source.send([{"data": 7, "sof": 0, "eol": 0}] * 4)  # outside any frame
+    await tb.source.send(frame_beats(good[1]))
+    tb.set_cfg(width=5, height=h, threshold=10)  # bad size: dropped
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(frame_beats(good[2][:, :5]))
+    tb.set_cfg(width=w, height=h, threshold=10)
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(frame_beats(good[2]))
+    await tb.wait_eofs(4, 100 * w * h)
+    records = split_records(tb.sink.beats)
+    for img, got in zip(good, records[1:], strict=True):
+        want = [tuple(int(v) for v in r) for r in detect(img, 10, SCORE, NMS)]
+        assert got == want, record_mismatch(got, want, "frame after bad input")
+    assert tb.err_frame > 0

@@ -17,7 +17,7 @@ def test_core_generated(request, score, nms):
         "fastnms_core",
         "core_tb",
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="generated_images",
+        testcase="generated_images,malformed_then_good",
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )
