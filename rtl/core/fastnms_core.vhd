@@ -1,8 +1,8 @@
 -- The corner pipeline without bus interfaces: FAST-9/16 detector, then
 -- non-maxima suppression. Pixels in, corner records out.
 --
--- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule). The
--- region NMS of the paper is not built yet.
+-- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule, or
+-- "none": every corner). The region NMS of the paper is not built yet.
 --
 -- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
 -- taken with the start-of-frame pixel). Output: one record per corner in
@@ -55,13 +55,15 @@ architecture rtl of fastnms_core is
   signal d_score  : unsigned(SCORE_BITS - 1 downto 0);
   signal d_sof    : std_logic;
   signal d_eol    : std_logic;
+  signal d_eof    : std_logic;
+  signal d_corner : std_logic;
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
 
 begin
 
-  assert NMS = "3x3"
-    report "fastnms_core: NMS must be ""3x3"" (the region NMS is not built yet)"
+  assert NMS = "3x3" or NMS = "none"
+    report "fastnms_core: NMS must be ""3x3"" or ""none"" (the region NMS is not built yet)"
     severity failure;
 
   detector : entity work.fastnms_fast_detector
@@ -84,42 +86,73 @@ begin
       in_eol        => in_eol,
       out_valid     => d_valid,
       out_ready     => d_ready,
-      out_corner    => open,
+      out_corner    => d_corner,
       out_score     => d_score,
       out_sof       => d_sof,
       out_eol       => d_eol,
-      out_eof       => open,
+      out_eof       => d_eof,
       out_width     => d_width,
       out_height    => d_height,
       err_line      => err_line,
       err_frame     => err_frame
     );
 
-  nms_3x3 : entity work.fastnms_nms_3x3
-    generic map (
-      MAX_WIDTH    => MAX_WIDTH,
-      MAX_HEIGHT   => MAX_HEIGHT,
-      SCORE_BITS   => SCORE_BITS,
-      READ_LATENCY => READ_LATENCY
-    )
-    port map (
-      clk        => clk,
-      rst        => rst,
-      cfg_width  => d_width,
-      cfg_height => d_height,
-      in_valid   => d_valid,
-      in_ready   => d_ready,
-      in_score   => d_score,
-      in_sof     => d_sof,
-      in_eol     => d_eol,
-      out_valid  => out_valid,
-      out_ready  => out_ready,
-      out_x      => out_x,
-      out_y      => out_y,
-      out_score  => out_score,
-      out_eof    => out_eof,
-      err_line   => open,
-      err_frame  => open
-    );
+  suppress_3x3 : if NMS = "3x3" generate
+
+    nms_3x3 : entity work.fastnms_nms_3x3
+      generic map (
+        MAX_WIDTH    => MAX_WIDTH,
+        MAX_HEIGHT   => MAX_HEIGHT,
+        SCORE_BITS   => SCORE_BITS,
+        READ_LATENCY => READ_LATENCY
+      )
+      port map (
+        clk        => clk,
+        rst        => rst,
+        cfg_width  => d_width,
+        cfg_height => d_height,
+        in_valid   => d_valid,
+        in_ready   => d_ready,
+        in_score   => d_score,
+        in_sof     => d_sof,
+        in_eol     => d_eol,
+        out_valid  => out_valid,
+        out_ready  => out_ready,
+        out_x      => out_x,
+        out_y      => out_y,
+        out_score  => out_score,
+        out_eof    => out_eof,
+        err_line   => open,
+        err_frame  => open
+      );
+
+  end generate suppress_3x3;
+
+  suppress_none : if NMS = "none" generate
+
+    nms_none : entity work.fastnms_nms_none
+      generic map (
+        MAX_WIDTH  => MAX_WIDTH,
+        MAX_HEIGHT => MAX_HEIGHT,
+        SCORE_BITS => SCORE_BITS
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => d_valid,
+        in_ready  => d_ready,
+        in_corner => d_corner,
+        in_score  => d_score,
+        in_eol    => d_eol,
+        in_eof    => d_eof,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_x     => out_x,
+        out_y     => out_y,
+        out_score => out_score,
+        out_eof   => out_eof
+      );
+
+  end generate suppress_none;
 
 end architecture rtl;

@@ -1,0 +1,113 @@
+-- No suppression: one record per corner of the detector's per-pixel stream,
+-- in raster order (out_x, out_y, out_score, out_eof = '0'), then one
+-- end-of-frame beat (out_eof = '1', out_x/out_y the frame's last pixel,
+-- out_score 0), also for a frame without corners.
+--
+-- Input: the detector's output stream, one beat per pixel with in_corner,
+-- in_score, in_eol and in_eof (the position is counted from them; the
+-- detector's stream is always well formed). One pixel per clock; the skid
+-- buffer's registered ready is the advance enable.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_nms_none is
+  generic (
+    MAX_WIDTH  : positive := 1920;
+    MAX_HEIGHT : positive := 4095;
+    SCORE_BITS : positive := 8
+  );
+  port (
+    clk       : in    std_logic;
+    rst       : in    std_logic;
+    in_valid  : in    std_logic;
+    in_ready  : out   std_logic;
+    in_corner : in    std_logic;
+    in_score  : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_eol    : in    std_logic;
+    in_eof    : in    std_logic;
+    out_valid : out   std_logic;
+    out_ready : in    std_logic;
+    out_x     : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y     : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof   : out   std_logic
+  );
+end entity fastnms_nms_none;
+
+architecture rtl of fastnms_nms_none is
+
+  signal advance : std_logic;
+  signal accept  : std_logic;
+
+  -- Position of the next pixel: both counters clear through the flip-flops'
+  -- reset, so the frame's first pixel finds them at (0, 0).
+  signal x : unsigned(out_x'range);
+  signal y : unsigned(out_y'range);
+
+  signal s1_valid : std_logic;
+  signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS downto 0);
+  signal s1_out   : std_logic_vector(s1_data'range);
+
+begin
+
+  accept   <= in_valid and advance;
+  in_ready <= advance;
+
+  position : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if rst = '1' or (accept = '1' and in_eol = '1') then
+        x <= (others => '0');
+      elsif accept = '1' then
+        x <= x + 1;
+      end if;
+      if rst = '1' or (accept = '1' and in_eof = '1') then
+        y <= (others => '0');
+      elsif accept = '1' and in_eol = '1' then
+        y <= y + 1;
+      end if;
+    end if;
+
+  end process position;
+
+  records : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if advance = '1' then
+        s1_valid <= in_valid and (in_corner or in_eof);
+        s1_data  <= in_eof & std_logic_vector(x) & std_logic_vector(y) & std_logic_vector(in_score);
+      end if;
+      if rst = '1' then
+        s1_valid <= '0';
+      end if;
+    end if;
+
+  end process records;
+
+  output_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => s1_data'length
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => s1_valid,
+      in_ready  => advance,
+      in_data   => s1_data,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => s1_out
+    );
+
+  out_eof   <= s1_out(s1_out'high);
+  out_x     <= unsigned(s1_out(s1_out'high - 1 downto out_y'length + SCORE_BITS));
+  out_y     <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
+  out_score <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
+
+end architecture rtl;
