@@ -18,9 +18,6 @@ package fastnms_pkg is
   -- maps to two levels of LUTs instead of a carry chain.
   function at_least (x : unsigned; c : natural) return std_logic;
 
-  -- '1' when x = c, as an AND of bit tests rather than a comparator.
-  function equals (x : unsigned; c : natural) return std_logic;
-
   -- '1' when a > b (same length), as a chain of gates: it maps to LUTs only,
   -- leaving the carry chains to the subtractors beside it.
   function greater (a : unsigned; b : unsigned) return std_logic;
@@ -75,24 +72,6 @@ package body fastnms_pkg is
     end loop;
     return ge;
   end function at_least;
-
-  function equals (x : unsigned; c : natural) return std_logic is
-    constant CV : unsigned(x'length - 1 downto 0) := to_unsigned(c, x'length);
-    variable xv : unsigned(x'length - 1 downto 0);
-    variable eq : std_logic                       := '1';
-  begin
-    xv := x;
-    for i in 0 to x'length - 1 loop
-
-      if CV(i) = '1' then
-        eq := eq and xv(i);
-      else
-        eq := eq and not xv(i);
-      end if;
-
-    end loop;
-    return eq;
-  end function equals;
 
   function greater (a : unsigned; b : unsigned) return std_logic is
     variable av : unsigned(a'length - 1 downto 0);
