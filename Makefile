@@ -61,7 +61,7 @@ test-full: setup lint
 
 # ---- pieces -----------------------------------------------------------------
 sim: setup
-	$(PYTEST) -m "not slow" tb
+	$(PYTEST) -m "not slow" tb --ignore=tb/test_synth.py
 
 golden-test: setup
 	$(PYTEST) -m "not slow" golden/tests
