@@ -8,6 +8,12 @@
 -- taken with the start-of-frame pixel). Output: one record per corner in
 -- raster order (out_x, out_y, out_score, out_eof = '0'), then one
 -- end-of-frame beat (out_eof = '1'), also for a frame without corners.
+--
+-- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
+-- corner) is also presented on the tap_* ports, one beat per pixel with
+-- start-of-frame and end-of-line; the detector advances only when both the
+-- NMS and the tap accept (a fork: each side's valid waits for the other's
+-- ready, and both readies come from registers).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -22,7 +28,8 @@ entity fastnms_core is
     MAX_HEIGHT   : positive := 4095;
     SCORE        : string   := "opencv";
     NMS          : string   := "3x3";
-    READ_LATENCY : positive := 1
+    READ_LATENCY : positive := 1;
+    SCORE_TAP    : boolean  := false
   );
   port (
     clk           : in    std_logic;
@@ -41,6 +48,11 @@ entity fastnms_core is
     out_y         : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
     out_eof       : out   std_logic;
+    tap_valid     : out   std_logic;
+    tap_ready     : in    std_logic := '1';
+    tap_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
+    tap_sof       : out   std_logic;
+    tap_eol       : out   std_logic;
     err_line      : out   std_logic;
     err_frame     : out   std_logic
   );
@@ -59,6 +71,10 @@ architecture rtl of fastnms_core is
   signal d_corner : std_logic;
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
+  -- The fork between the NMS and the score tap.
+  signal n_valid  : std_logic;
+  signal n_ready  : std_logic;
+  signal t_ready  : std_logic;
 
 begin
 
@@ -97,6 +113,14 @@ begin
       err_frame     => err_frame
     );
 
+  t_ready   <= tap_ready when SCORE_TAP else '1';
+  d_ready   <= n_ready and t_ready;
+  n_valid   <= d_valid and t_ready;
+  tap_valid <= d_valid and n_ready when SCORE_TAP else '0';
+  tap_score <= d_score;
+  tap_sof   <= d_sof;
+  tap_eol   <= d_eol;
+
   suppress_3x3 : if NMS = "3x3" generate
 
     nms_3x3 : entity work.fastnms_nms_3x3
@@ -111,8 +135,8 @@ begin
         rst        => rst,
         cfg_width  => d_width,
         cfg_height => d_height,
-        in_valid   => d_valid,
-        in_ready   => d_ready,
+        in_valid   => n_valid,
+        in_ready   => n_ready,
         in_score   => d_score,
         in_sof     => d_sof,
         in_eol     => d_eol,
@@ -139,8 +163,8 @@ begin
       port map (
         clk       => clk,
         rst       => rst,
-        in_valid  => d_valid,
-        in_ready  => d_ready,
+        in_valid  => n_valid,
+        in_ready  => n_ready,
         in_corner => d_corner,
         in_score  => d_score,
         in_eol    => d_eol,
