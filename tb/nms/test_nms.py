@@ -15,3 +15,16 @@ def test_nms_3x3(request, score_bits, idle, stall):
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.5)], ids=str)
+def test_nms_region(request, connectivity, idle, stall):
+    generics = {"MAX_WIDTH": 32, "MAX_HEIGHT": 64, "SCORE_BITS": 8, "CONNECTIVITY": connectivity}
+    run_cocotb(
+        "fastnms_nms_region",
+        "region_tb",
+        generics,
+        name=request.node.nodeid,
+        env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )

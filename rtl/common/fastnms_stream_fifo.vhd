@@ -1,0 +1,115 @@
+-- First-word-fall-through FIFO on the project's one RAM entity.
+--
+-- in_ready is a flip-flop ('1' while there is room for one more beat); the
+-- head of the queue is presented on out_data with out_valid and leaves on a
+-- clock with out_valid = out_ready = '1'. One beat per clock in and out; a
+-- beat written into an empty FIFO appears on the output two clocks later.
+-- DEPTH counts the RAM entries; the output register holds one more beat.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_stream_fifo is
+  generic (
+    DEPTH : positive := 512;
+    WIDTH : positive := 8;
+    STYLE : string   := "block"
+  );
+  port (
+    clk       : in    std_logic;
+    rst       : in    std_logic;
+    in_valid  : in    std_logic;
+    in_ready  : out   std_logic;
+    in_data   : in    std_logic_vector(WIDTH - 1 downto 0);
+    out_valid : out   std_logic;
+    out_ready : in    std_logic;
+    out_data  : out   std_logic_vector(WIDTH - 1 downto 0)
+  );
+end entity fastnms_stream_fifo;
+
+architecture rtl of fastnms_stream_fifo is
+
+  constant PTR_BITS : positive := clog2(DEPTH);
+
+  signal wr_ptr    : unsigned(PTR_BITS - 1 downto 0);
+  signal rd_ptr    : unsigned(PTR_BITS - 1 downto 0);
+  -- Beats in the RAM (written and not yet read), 0 .. DEPTH.
+  signal stored    : unsigned(bits_for(DEPTH) - 1 downto 0);
+  signal room      : std_logic;
+  signal head_full : std_logic;
+  signal push      : std_logic;
+  signal load      : std_logic;
+
+begin
+
+  assert DEPTH >= 2
+    report "fastnms_stream_fifo: DEPTH must be at least 2"
+    severity failure;
+
+  push      <= in_valid and room;
+  -- Read the next beat into the output register when it is empty or leaving.
+  load      <= to_sl(stored /= 0) and (not head_full or out_ready);
+  in_ready  <= room;
+  out_valid <= head_full;
+
+  control : process (clk) is
+
+    variable next_stored : unsigned(stored'range);
+
+  begin
+
+    if rising_edge(clk) then
+      next_stored := stored;
+      if push = '1' then
+        wr_ptr <= wr_ptr + 1;
+        if wr_ptr = DEPTH - 1 then
+          wr_ptr <= (others => '0');
+        end if;
+        next_stored := next_stored + 1;
+      end if;
+      if load = '1' then
+        rd_ptr <= rd_ptr + 1;
+        if rd_ptr = DEPTH - 1 then
+          rd_ptr <= (others => '0');
+        end if;
+        next_stored := next_stored - 1;
+      end if;
+      stored <= next_stored;
+      room   <= to_sl(next_stored /= DEPTH);
+      if load = '1' then
+        head_full <= '1';
+      elsif out_ready = '1' then
+        head_full <= '0';
+      end if;
+      if rst = '1' then
+        wr_ptr    <= (others => '0');
+        rd_ptr    <= (others => '0');
+        stored    <= (others => '0');
+        room      <= '0';
+        head_full <= '0';
+      end if;
+    end if;
+
+  end process control;
+
+  memory : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH        => DEPTH,
+      WIDTH        => WIDTH,
+      READ_LATENCY => 1,
+      STYLE        => STYLE
+    )
+    port map (
+      clk     => clk,
+      wr_en   => push,
+      wr_addr => wr_ptr,
+      wr_data => in_data,
+      rd_en   => load,
+      rd_addr => rd_ptr,
+      rd_data => out_data
+    );
+
+end architecture rtl;

@@ -1,0 +1,604 @@
+-- Region NMS, part 2: the region table. Takes the events of
+-- fastnms_nms_region_scan one at a time and emits a region's record when the
+-- region closes.
+--
+-- Per label (block RAM, one word per label and field):
+--   region       the region the label belongs to (a flat table: always one look-up)
+--   runs         runs of the label line holding the label
+--   next, prev   the region's labels as a doubly linked list
+-- Per region (the paper's RAM score):
+--   best         the maximum, as the key {score, not y, not x}: the larger
+--                key is the larger score, then the first pixel in raster order
+--   head, tail   its list of labels
+-- Labels and regions are recycled through free lists (FIFOs); labels also go
+-- to the scan as its spare label.
+--
+-- Events, in this order within one beat:
+--   new    label l starts with one run, in a fresh region whose best is the run's first pixel
+--   union  the regions of l and u merge: the best of both, and the labels of
+--          u's region re-pointed at l's region (2 clocks per label)
+--   end    the run of l ends: its best enters l's region; l counts one more
+--          run unless credit = '1'
+--   pass   one run of p has left the line: when p holds no run any more it
+--          leaves its region's list and returns to the free list; a region
+--          whose list is empty is closed and its record goes out
+--   eof    the end-of-frame beat goes out
+-- Clocks per event beat: 1, plus 1 for new, 5 + 2 per label moved for a
+-- union, 3 for end, 2 for pass (3 and the output handshake when a region closes).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_nms_region_table is
+  generic (
+    LABELS     : positive := 963;
+    LABEL_BITS : positive := 10;
+    RUN_BITS   : positive := 10;
+    SCORE_BITS : positive := 8;
+    X_BITS     : positive := 11;
+    Y_BITS     : positive := 12
+  );
+  port (
+    clk            : in    std_logic;
+    rst            : in    std_logic;
+    ev_valid       : in    std_logic;
+    ev_ready       : out   std_logic;
+    ev_new         : in    std_logic;
+    ev_union       : in    std_logic;
+    ev_union_label : in    unsigned(LABEL_BITS - 1 downto 0);
+    ev_end         : in    std_logic;
+    ev_credit      : in    std_logic;
+    ev_pass        : in    std_logic;
+    ev_pass_label  : in    unsigned(LABEL_BITS - 1 downto 0);
+    ev_label       : in    unsigned(LABEL_BITS - 1 downto 0);
+    ev_score       : in    unsigned(SCORE_BITS - 1 downto 0);
+    ev_x           : in    unsigned(X_BITS - 1 downto 0);
+    ev_y           : in    unsigned(Y_BITS - 1 downto 0);
+    ev_eof         : in    std_logic;
+    spare_valid    : out   std_logic;
+    spare_label    : out   unsigned(LABEL_BITS - 1 downto 0);
+    spare_take     : in    std_logic;
+    out_valid      : out   std_logic;
+    out_ready      : in    std_logic;
+    out_x          : out   unsigned(X_BITS - 1 downto 0);
+    out_y          : out   unsigned(Y_BITS - 1 downto 0);
+    out_score      : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof        : out   std_logic
+  );
+end entity fastnms_nms_region_table;
+
+architecture rtl of fastnms_nms_region_table is
+
+  constant KEY_BITS : positive := SCORE_BITS + Y_BITS + X_BITS;
+
+  subtype label_t is unsigned(LABEL_BITS - 1 downto 0);
+  subtype key_t is unsigned(KEY_BITS - 1 downto 0);
+
+  constant NONE : label_t := (others => '0');
+
+  type state_t is (
+    FETCH, NEW_RUN, UNION_A, UNION_B, UNION_CMP, UNION_READ_B, UNION_LINK, WALK, WALK_NEXT,
+    END_READ, END_COUNT, END_BEST, PASS_READ, PASS_COUNT, PASS_EMIT, EOF_EMIT
+  );
+
+  type step_t is (STEP_NEW, STEP_UNION, STEP_END, STEP_PASS, STEP_EOF);
+
+  signal state        : state_t;
+  -- Label RAMs: one read address for all fields.
+  signal lab_rd_addr  : label_t;
+  signal lab_region   : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_runs     : std_logic_vector(RUN_BITS - 1 downto 0);
+  signal lab_next     : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_prev     : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal region_we    : std_logic;
+  signal region_addr  : label_t;
+  signal region_data  : label_t;
+  signal runs_we      : std_logic;
+  signal runs_addr    : label_t;
+  signal runs_data    : unsigned(RUN_BITS - 1 downto 0);
+  signal next_we      : std_logic;
+  signal next_addr    : label_t;
+  signal next_data    : label_t;
+  signal prev_we      : std_logic;
+  signal prev_addr    : label_t;
+  signal prev_data    : label_t;
+  -- Region RAMs: one read address for all fields.
+  signal reg_rd_addr  : label_t;
+  signal reg_best     : std_logic_vector(KEY_BITS - 1 downto 0);
+  signal reg_head     : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_tail     : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal best_we      : std_logic;
+  signal best_addr    : label_t;
+  signal best_data    : key_t;
+  signal head_we      : std_logic;
+  signal head_addr    : label_t;
+  signal head_data    : label_t;
+  signal tail_we      : std_logic;
+  signal tail_addr    : label_t;
+  signal tail_data    : label_t;
+  -- Working registers.
+  signal region_a     : label_t;
+  signal region_b     : label_t;
+  signal best_a       : key_t;
+  signal tail_a       : label_t;
+  signal cursor       : label_t;
+  signal event_key    : key_t;
+  signal finish       : std_logic;
+  -- Free lists and the spare label / region.
+  signal lab_fresh    : unsigned(LABEL_BITS downto 0);
+  signal lab_free_in  : std_logic;
+  signal lab_free_out : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_free_ok  : std_logic;
+  signal lab_free_pop : std_logic;
+  signal spare_ok     : std_logic;
+  signal spare        : label_t;
+  signal reg_fresh    : unsigned(LABEL_BITS downto 0);
+  signal reg_free_in  : std_logic;
+  signal reg_free_lab : label_t;
+  signal reg_free_out : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_free_ok  : std_logic;
+  signal reg_free_pop : std_logic;
+  signal new_region   : label_t;
+  signal new_ok       : std_logic;
+  signal take_region  : std_logic;
+  -- Output.
+  signal emit         : std_logic;
+  signal emit_ready   : std_logic;
+  signal emit_data    : std_logic_vector(KEY_BITS downto 0);
+  signal out_data     : std_logic_vector(KEY_BITS downto 0);
+  signal out_key      : key_t;
+
+  function larger (a : key_t; b : key_t) return key_t is
+  begin
+
+    if a > b then
+      return a;
+    end if;
+    return b;
+
+  end function larger;
+
+  -- The first step at or after `from` that the event beat asks for.
+  function first_step (
+    from : step_t; f_new, f_union, f_end, f_pass, f_eof : std_logic) return state_t is
+  begin
+
+    if from = STEP_NEW and f_new = '1' then
+      return NEW_RUN;
+    elsif from <= STEP_UNION and f_union = '1' then
+      return UNION_A;
+    elsif from <= STEP_END and f_end = '1' then
+      return END_READ;
+    elsif from <= STEP_PASS and f_pass = '1' then
+      return PASS_READ;
+    elsif f_eof = '1' then
+      return EOF_EMIT;
+    end if;
+    return FETCH;
+
+  end function first_step;
+
+begin
+
+  assert LABELS <= 2 ** LABEL_BITS
+    report "fastnms_nms_region_table: LABELS does not fit in LABEL_BITS"
+    severity failure;
+
+  event_key <= ev_score & not ev_y & not ev_x;
+
+  -- ---- the event sequencer --------------------------------------------------
+  sequencer : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+
+      case state is
+
+        when FETCH =>
+          if ev_valid = '1' then
+            state <= first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          end if;
+
+        when NEW_RUN =>
+          if new_ok = '1' then
+            state <= first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          end if;
+
+        when UNION_A =>
+          state <= UNION_B;
+
+        when UNION_B =>
+          region_a <= unsigned(lab_region);
+          state    <= UNION_CMP;
+
+        when UNION_CMP =>
+          region_b <= unsigned(lab_region);
+          if unsigned(lab_region) = region_a then
+            state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          else
+            state <= UNION_READ_B;
+          end if;
+
+        when UNION_READ_B =>
+          best_a <= unsigned(reg_best);
+          tail_a <= unsigned(reg_tail);
+          state  <= UNION_LINK;
+
+        when UNION_LINK =>
+          cursor <= unsigned(reg_head);
+          state  <= WALK;
+
+        when WALK =>
+          state <= WALK_NEXT;
+
+        when WALK_NEXT =>
+          cursor <= unsigned(lab_next);
+          if unsigned(lab_next) = NONE then
+            state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          else
+            state <= WALK;
+          end if;
+
+        when END_READ =>
+          state <= END_COUNT;
+
+        when END_COUNT =>
+          region_a <= unsigned(lab_region);
+          state    <= END_BEST;
+
+        when END_BEST =>
+          state <= first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+
+        when PASS_READ =>
+          state <= PASS_COUNT;
+
+        when PASS_COUNT =>
+          region_a <= unsigned(lab_region);
+          if unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and unsigned(lab_next) = NONE then
+            state <= PASS_EMIT;
+          else
+            state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          end if;
+
+        when PASS_EMIT =>
+          if emit_ready = '1' then
+            state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          end if;
+
+        when EOF_EMIT =>
+          if emit_ready = '1' then
+            state <= FETCH;
+          end if;
+
+      end case;
+
+      if rst = '1' then
+        state <= FETCH;
+      end if;
+    end if;
+
+  end process sequencer;
+
+  -- The event beat leaves the queue on the clock its last step completes.
+  finish_step : process (all) is
+  begin
+
+    finish <= '0';
+
+    case state is
+
+      when NEW_RUN =>
+        finish <= new_ok and to_sl(first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when UNION_CMP =>
+        finish <= to_sl(unsigned(lab_region) = region_a and
+                        first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when WALK_NEXT =>
+        finish <= to_sl(unsigned(lab_next) = NONE and
+                        first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when END_BEST =>
+        finish <= to_sl(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when PASS_COUNT =>
+        finish <= to_sl(not (unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and
+                             unsigned(lab_next) = NONE) and
+                        first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when PASS_EMIT =>
+        finish <= emit_ready and to_sl(first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
+
+      when EOF_EMIT =>
+        finish <= emit_ready;
+
+      when others =>
+        null;
+
+    end case;
+
+  end process finish_step;
+
+  ev_ready <= finish;
+
+  -- ---- RAM addresses and writes per state -----------------------------------
+  ports : process (all) is
+  begin
+
+    lab_rd_addr  <= ev_label;
+    reg_rd_addr  <= region_a;
+    region_we    <= '0';
+    region_addr  <= ev_label;
+    region_data  <= new_region;
+    runs_we      <= '0';
+    runs_addr    <= ev_label;
+    runs_data    <= to_unsigned(1, RUN_BITS);
+    next_we      <= '0';
+    next_addr    <= ev_label;
+    next_data    <= NONE;
+    prev_we      <= '0';
+    prev_addr    <= ev_label;
+    prev_data    <= NONE;
+    best_we      <= '0';
+    best_addr    <= new_region;
+    best_data    <= event_key;
+    head_we      <= '0';
+    head_addr    <= new_region;
+    head_data    <= ev_label;
+    tail_we      <= '0';
+    tail_addr    <= new_region;
+    tail_data    <= ev_label;
+    take_region  <= '0';
+    reg_free_in  <= '0';
+    reg_free_lab <= region_b;
+    lab_free_in  <= '0';
+    emit         <= '0';
+    emit_data    <= '0' & reg_best;
+
+    case state is
+
+      when NEW_RUN =>
+        -- One run, a fresh region whose list is the label alone.
+        region_we   <= new_ok;
+        runs_we     <= new_ok;
+        next_we     <= new_ok;
+        prev_we     <= new_ok;
+        best_we     <= new_ok;
+        head_we     <= new_ok;
+        tail_we     <= new_ok;
+        take_region <= new_ok;
+
+      when UNION_A =>
+        lab_rd_addr <= ev_label;
+
+      when UNION_B =>
+        lab_rd_addr <= ev_union_label;
+
+      when UNION_CMP =>
+        reg_rd_addr <= region_a;
+
+      when UNION_READ_B =>
+        reg_rd_addr <= region_b;
+
+      when UNION_LINK =>
+        -- Region b's list goes after region a's; a keeps the better maximum.
+        best_we     <= '1';
+        best_addr   <= region_a;
+        best_data   <= larger(best_a, unsigned(reg_best));
+        tail_we     <= '1';
+        tail_addr   <= region_a;
+        tail_data   <= unsigned(reg_tail);
+        next_we     <= '1';
+        next_addr   <= tail_a;
+        next_data   <= unsigned(reg_head);
+        prev_we     <= '1';
+        prev_addr   <= unsigned(reg_head);
+        prev_data   <= tail_a;
+        reg_free_in <= '1';
+
+      when WALK =>
+        region_we   <= '1';
+        region_addr <= cursor;
+        region_data <= region_a;
+        lab_rd_addr <= cursor;
+
+      when END_READ =>
+        lab_rd_addr <= ev_label;
+
+      when END_COUNT =>
+        runs_we     <= not ev_credit;
+        runs_data   <= unsigned(lab_runs) + 1;
+        reg_rd_addr <= unsigned(lab_region);
+
+      when END_BEST =>
+        best_we   <= '1';
+        best_addr <= region_a;
+        best_data <= larger(unsigned(reg_best), event_key);
+
+      when PASS_READ =>
+        lab_rd_addr <= ev_pass_label;
+
+      when PASS_COUNT =>
+        runs_addr   <= ev_pass_label;
+        runs_data   <= unsigned(lab_runs) - 1;
+        reg_rd_addr <= unsigned(lab_region);
+        if unsigned(lab_runs) /= 1 then
+          runs_we <= '1';
+        else
+          -- The label leaves its region's list and is free again.
+          lab_free_in <= '1';
+          next_addr   <= unsigned(lab_prev);
+          next_data   <= unsigned(lab_next);
+          next_we     <= to_sl(unsigned(lab_prev) /= NONE);
+          head_addr   <= unsigned(lab_region);
+          head_data   <= unsigned(lab_next);
+          head_we     <= to_sl(unsigned(lab_prev) = NONE);
+          prev_addr   <= unsigned(lab_next);
+          prev_data   <= unsigned(lab_prev);
+          prev_we     <= to_sl(unsigned(lab_next) /= NONE);
+          tail_addr   <= unsigned(lab_region);
+          tail_data   <= unsigned(lab_prev);
+          tail_we     <= to_sl(unsigned(lab_next) = NONE);
+        end if;
+
+      when PASS_EMIT =>
+        -- The list is empty: the region is closed.
+        reg_rd_addr  <= region_a;
+        emit         <= '1';
+        reg_free_in  <= emit_ready;
+        reg_free_lab <= region_a;
+
+      when EOF_EMIT =>
+        emit      <= '1';
+        emit_data           <= (others => '0');
+        emit_data(KEY_BITS) <= '1';
+
+      when others =>
+        null;
+
+    end case;
+
+  end process ports;
+
+  -- ---- spare label and region ----------------------------------------------
+  lab_free_pop <= lab_free_ok and (not spare_ok or spare_take) and to_sl(lab_fresh = LABELS);
+  reg_free_pop <= reg_free_ok and take_region and to_sl(reg_fresh = LABELS);
+  new_region   <= reg_fresh(LABEL_BITS - 1 downto 0) when reg_fresh /= LABELS else unsigned(reg_free_out);
+  new_ok       <= to_sl(reg_fresh /= LABELS) or reg_free_ok;
+  spare_valid  <= spare_ok;
+  spare_label  <= spare;
+
+  supply : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if spare_ok = '0' or spare_take = '1' then
+        if lab_fresh /= LABELS then
+          spare     <= lab_fresh(LABEL_BITS - 1 downto 0);
+          spare_ok  <= '1';
+          lab_fresh <= lab_fresh + 1;
+        else
+          spare    <= unsigned(lab_free_out);
+          spare_ok <= lab_free_ok;
+        end if;
+      end if;
+      if take_region = '1' and reg_fresh /= LABELS then
+        reg_fresh <= reg_fresh + 1;
+      end if;
+      if rst = '1' then
+        spare_ok  <= '0';
+        lab_fresh <= to_unsigned(1, lab_fresh'length);
+        reg_fresh <= to_unsigned(1, reg_fresh'length);
+      end if;
+    end if;
+
+  end process supply;
+
+  label_free_list : entity work.fastnms_stream_fifo
+    generic map (
+      DEPTH => LABELS,
+      WIDTH => LABEL_BITS
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => lab_free_in,
+      in_ready  => open,
+      in_data   => std_logic_vector(ev_pass_label),
+      out_valid => lab_free_ok,
+      out_ready => lab_free_pop,
+      out_data  => lab_free_out
+    );
+
+  region_free_list : entity work.fastnms_stream_fifo
+    generic map (
+      DEPTH => LABELS,
+      WIDTH => LABEL_BITS
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => reg_free_in,
+      in_ready  => open,
+      in_data   => std_logic_vector(reg_free_lab),
+      out_valid => reg_free_ok,
+      out_ready => reg_free_pop,
+      out_data  => reg_free_out
+    );
+
+  -- ---- the tables ------------------------------------------------------------
+  label_region : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    port map (
+      clk => clk, wr_en => region_we, wr_addr => region_addr, wr_data => std_logic_vector(region_data),
+      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_region
+    );
+
+  label_runs : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => RUN_BITS)
+    port map (
+      clk => clk, wr_en => runs_we, wr_addr => runs_addr, wr_data => std_logic_vector(runs_data),
+      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_runs
+    );
+
+  label_next : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    port map (
+      clk => clk, wr_en => next_we, wr_addr => next_addr, wr_data => std_logic_vector(next_data),
+      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_next
+    );
+
+  label_prev : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    port map (
+      clk => clk, wr_en => prev_we, wr_addr => prev_addr, wr_data => std_logic_vector(prev_data),
+      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_prev
+    );
+
+  region_best : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => KEY_BITS)
+    port map (
+      clk => clk, wr_en => best_we, wr_addr => best_addr, wr_data => std_logic_vector(best_data),
+      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_best
+    );
+
+  region_head : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    port map (
+      clk => clk, wr_en => head_we, wr_addr => head_addr, wr_data => std_logic_vector(head_data),
+      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_head
+    );
+
+  region_tail : entity work.fastnms_ram_sdp
+    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    port map (
+      clk => clk, wr_en => tail_we, wr_addr => tail_addr, wr_data => std_logic_vector(tail_data),
+      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_tail
+    );
+
+  -- ---- output ------------------------------------------------------------------
+  output : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => KEY_BITS + 1
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => emit,
+      in_ready  => emit_ready,
+      in_data   => emit_data,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => out_data
+    );
+
+  out_eof   <= out_data(KEY_BITS);
+  out_key   <= unsigned(out_data(KEY_BITS - 1 downto 0));
+  out_score <= out_key(KEY_BITS - 1 downto Y_BITS + X_BITS);
+  out_y     <= not out_key(Y_BITS + X_BITS - 1 downto X_BITS);
+  out_x     <= not out_key(X_BITS - 1 downto 0);
+
+end architecture rtl;

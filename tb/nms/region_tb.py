@@ -1,0 +1,201 @@
+"""cocotb testbench of fastnms_nms_region on its own: any corner/score map
+(not only what FAST can produce) against the golden model's region rule
+(fastnms.nms.nms_region), compared as sets of (x, y, score)."""
+
+from __future__ import annotations
+
+import ast
+import os
+
+import cocotb
+import numpy as np
+from cocotb.triggers import ClockCycles, RisingEdge
+from cocotb.utils import get_sim_time
+from fastnms.nms import nms_region
+from regions import SHAPES, grid, serpentine, square_spiral
+from video import PERIOD_NS, VideoTB, record_mismatch, split_records
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+MAX_HEIGHT = GENERICS["MAX_HEIGHT"]
+SCORE_BITS = GENERICS["SCORE_BITS"]
+CONNECTIVITY = GENERICS["CONNECTIVITY"]
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+
+
+def map_beats(corner: np.ndarray, score: np.ndarray) -> list[dict[str, int]]:
+    h, w = corner.shape
+    return [
+        {
+            "corner": int(corner[y, x]),
+            "score": int(score[y, x]),
+            "sof": int(x == 0 and y == 0),
+            "eol": int(x == w - 1),
+            "eof": int(x == w - 1 and y == h - 1),
+        }
+        for y in range(h)
+        for x in range(w)
+    ]
+
+
+class TB(VideoTB):
+    def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
+        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall)
+        dut._log.info("generics %s", GENERICS)
+        self.set_cfg(width=3)
+
+    async def _count_errors(self) -> None:  # this block has no error outputs
+        return
+
+    def random_map(self, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:
+        """Sparse to dense corners, few distinct scores (many ties) or the full range."""
+        rng = self.np_rng
+        density = float(rng.choice([0.05, 0.3, 0.5, 0.7, 1.0]))
+        top = int(rng.choice([2, 2**SCORE_BITS - 1]))
+        corner = rng.random((height, width)) < density
+        score = rng.integers(0, top + 1, (height, width)) * corner
+        return corner, score.astype(np.int64)
+
+    async def run_maps(self, maps: list[tuple[np.ndarray, np.ndarray]], label: str) -> int:
+        """Send the maps back to back and compare each frame's records with the golden.
+        Returns the clocks from the first pixel accepted to the last end-of-frame beat."""
+        start = len(self.sink.beats)
+        eofs = sum(b["eof"] for b in self.sink.beats) + len(maps)
+        first = get_sim_time("ns")
+        self.set_cfg(width=maps[0][0].shape[1])
+        await ClockCycles(self.dut.clk, 2)
+        for i, (corner, score) in enumerate(maps):
+            nxt = maps[i + 1][0].shape[1] if i + 1 < len(maps) else None
+
+            def after(k, nxt=nxt):
+                if k == 0 and nxt is not None:
+                    self.set_cfg(width=nxt)
+
+            await self.source.send(map_beats(corner, score), on_accept=after)
+        total = sum(c.size for c, _ in maps)
+        await self.wait_eofs(eofs, 40 * total + 2000)
+        frames = split_records(self.sink.beats[start:])
+        for i, ((corner, score), got) in enumerate(zip(maps, frames, strict=True)):
+            want = [tuple(int(v) for v in r) for r in nms_region(corner, score, CONNECTIVITY)]
+            name = f"{label} frame {i} ({corner.shape[1]}x{corner.shape[0]})"
+            got = sorted(got, key=lambda r: (r[1], r[0]))
+            assert got == want, record_mismatch(got, want, name)
+        last_eof = max(t for b, t in zip(self.sink.beats, self.sink.times, strict=True) if b["eof"])
+        return (last_eof - first) // PERIOD_NS
+
+
+def stress_maps(width: int, rng: np.random.Generator) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The stress shapes of the issue, each with random scores (ties included)."""
+
+    def scored(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return mask, (rng.integers(0, 4, mask.shape) * mask).astype(np.int64)
+
+    maps = []
+    for text, *_ in SHAPES.values():
+        corner, score = grid(text)
+        maps.append((corner, score.astype(np.int64)))
+    h = 12
+    comb = np.zeros((h, width), dtype=bool)
+    comb[: h - 1, ::2] = True  # teeth joined by the bottom row
+    comb[h - 1] = True
+    maps.append(scored(comb))
+    checker = (np.indices((h, width)).sum(0) % 2) == 0  # width/2 regions per row (4-conn)
+    maps.append(scored(checker))
+    columns = np.zeros((h, width), dtype=bool)
+    columns[:, ::2] = True  # width/2 regions open over the whole frame
+    maps.append(scored(columns))
+    maps.append(scored(serpentine(h, width)))
+    maps.append(scored(square_spiral(min(width, 24))))
+    maps.append(scored(np.ones((h, width), dtype=bool)))  # one region, the whole frame
+    diagonal = np.zeros((h, width), dtype=bool)  # chains joined only under 8-connectivity
+    for k in range(0, width + h, 3):
+        for y in range(h):
+            if 0 <= k - y < width:
+                diagonal[y, k - y] = True
+    maps.append(scored(diagonal))
+    stairs = np.zeros((h, width), dtype=bool)
+    for y in range(h):
+        stairs[y, max(0, width - 2 - 2 * y) : width - 2 * y] = True
+    maps.append(scored(stairs))
+    edges = np.zeros((h, width), dtype=bool)  # regions on the first and last rows and columns
+    edges[0, ::3] = edges[-1, 1::3] = edges[:, 0] = edges[:, -1] = True
+    maps.append(scored(edges))
+    return maps
+
+
+@cocotb.test()
+async def shapes(dut):
+    """U, nested U, spirals, staircases, combs, checkerboards, diagonal chains,
+    a full frame, ties across merges, regions on the first and last rows."""
+    tb = TB(dut)
+    await tb.reset()
+    await tb.run_maps(stress_maps(MAX_WIDTH, tb.np_rng), "shapes")
+
+
+@cocotb.test()
+async def random_maps(dut):
+    """Back-to-back random maps, 1x1 to MAX_WIDTH wide, sparse to full, many ties."""
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    sizes = [(7, 7), (MAX_WIDTH, 8), (1, 1), (1, 6), (2, 5), (3, 5), (MAX_WIDTH, 1), (5, 3)]
+    sizes += [(int(rng.integers(1, MAX_WIDTH + 1)), int(rng.integers(1, 24))) for _ in range(14)]
+    await tb.run_maps([tb.random_map(w, h) for w, h in sizes], "random")
+
+
+@cocotb.test()
+async def empty_and_reset(dut):
+    """Frames without corners still end with an end-of-frame beat; a reset in
+    mid-frame is followed by exact frames."""
+    tb = TB(dut)
+    await tb.reset()
+    blank = np.zeros((7, 9), dtype=bool)
+    await tb.run_maps([(blank, blank.astype(np.int64))] * 2, "empty")
+    assert split_records(tb.sink.beats) == [[], []]
+    corner, score = tb.random_map(MAX_WIDTH, 10)
+    beats = map_beats(corner, score)
+    tb.set_cfg(width=MAX_WIDTH)
+    await ClockCycles(dut.clk, 2)
+    await tb.source.send(beats[: len(beats) // 2])
+    await tb.reset()
+    tb.sink.beats.clear()
+    tb.sink.times.clear()
+    await tb.run_maps([tb.random_map(MAX_WIDTH, 9), tb.random_map(7, 7)], "after reset")
+
+
+@cocotb.test()
+async def throughput(dut):
+    """Clocks per frame for FAST-like sparse maps and for the worst cases
+    (checkerboard, columns): logged, and sparse maps held to 1 pixel per clock."""
+    if IDLE or STALL:
+        return
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    w, h = MAX_WIDTH, 16
+    sparse = rng.random((h, w)) < 0.1
+    sparse[:, :3] = sparse[:, -3:] = False
+    cases = {
+        "sparse 10%": (sparse, (rng.integers(1, 50, (h, w)) * sparse).astype(np.int64)),
+        "checkerboard": stress_maps(w, rng)[len(SHAPES) + 1],
+        "columns": stress_maps(w, rng)[len(SHAPES) + 2],
+    }
+    for name, (corner, score) in cases.items():
+        await ClockCycles(dut.clk, 4 * w)
+        clocks = await tb.run_maps([(corner, score)] * 3, name)
+        per_pixel = clocks / (3 * w * h)
+        dut._log.info("%s: %d clocks for 3 frames %dx%d, %.3f per pixel", name, clocks, w, h, per_pixel)
+        if name == "sparse 10%":
+            # W clocks of flush per frame plus the pipeline: 1 pixel per clock otherwise.
+            assert clocks <= 3 * (w * h + w) + 60, f"{name}: {clocks} clocks"
+
+
+@cocotb.test()
+async def idle_output(dut):
+    """The end-of-frame beat leaves without further input."""
+    tb = TB(dut)
+    await tb.reset()
+    await tb.run_maps([tb.random_map(MAX_WIDTH, 5)], "single")
+    for _ in range(10):
+        await RisingEdge(dut.clk)
