@@ -25,7 +25,7 @@ TB = REPO / "tb"
 BUILD = REPO / "build" / "sim"
 
 # Compile order: packages first, then building blocks, then what uses them.
-RTL_ORDER = ["common", "fast", "nms", "core"]
+RTL_ORDER = ["common", "fast", "nms", "core", "top"]
 
 
 def rtl_sources() -> list[Path]:

@@ -1,13 +1,15 @@
 -- The corner pipeline without bus interfaces: FAST-9/16 detector, then
 -- non-maxima suppression. Pixels in, corner records out.
 --
--- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule, or
--- "none": every corner). The region NMS of the paper is not built yet.
+-- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule,
+-- "region4" / "region8": the paper's region NMS with 4- or 8-connectivity, or
+-- "none": every corner).
 --
 -- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
--- taken with the start-of-frame pixel). Output: one record per corner in
--- raster order (out_x, out_y, out_score, out_eof = '0'), then one
--- end-of-frame beat (out_eof = '1'), also for a frame without corners.
+-- taken with the start-of-frame pixel). Output: one record per corner
+-- (out_x, out_y, out_score, out_eof = '0'; raster order except for the
+-- region NMS, whose records leave as regions close), then one end-of-frame
+-- beat (out_eof = '1'), also for a frame without corners.
 --
 -- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
 -- corner) is also presented on the tap_* ports, one beat per pixel with
@@ -62,6 +64,18 @@ architecture rtl of fastnms_core is
 
   constant SCORE_BITS : positive := score_width(SCORE);
 
+  function connectivity_of (nms_name : string) return positive is
+  begin
+
+    if nms_name = "region4" then
+      return 4;
+    end if;
+    return 8;
+
+  end function connectivity_of;
+
+  constant REGION_CONNECTIVITY : positive := connectivity_of(NMS);
+
   signal d_valid  : std_logic;
   signal d_ready  : std_logic;
   signal d_score  : unsigned(SCORE_BITS - 1 downto 0);
@@ -78,8 +92,8 @@ architecture rtl of fastnms_core is
 
 begin
 
-  assert NMS = "3x3" or NMS = "none"
-    report "fastnms_core: NMS must be ""3x3"" or ""none"" (the region NMS is not built yet)"
+  assert NMS = "3x3" or NMS = "none" or NMS = "region4" or NMS = "region8"
+    report "fastnms_core: NMS must be ""3x3"", ""region4"", ""region8"" or ""none"""
     severity failure;
 
   detector : entity work.fastnms_fast_detector
@@ -151,6 +165,36 @@ begin
       );
 
   end generate suppress_3x3;
+
+  suppress_region : if NMS = "region4" or NMS = "region8" generate
+
+    nms_region : entity work.fastnms_nms_region
+      generic map (
+        MAX_WIDTH    => MAX_WIDTH,
+        MAX_HEIGHT   => MAX_HEIGHT,
+        SCORE_BITS   => SCORE_BITS,
+        CONNECTIVITY => REGION_CONNECTIVITY
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        cfg_width => d_width,
+        in_valid  => n_valid,
+        in_ready  => n_ready,
+        in_corner => d_corner,
+        in_score  => d_score,
+        in_sof    => d_sof,
+        in_eol    => d_eol,
+        in_eof    => d_eof,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_x     => out_x,
+        out_y     => out_y,
+        out_score => out_score,
+        out_eof   => out_eof
+      );
+
+  end generate suppress_region;
 
   suppress_none : if NMS = "none" generate
 

@@ -11,7 +11,18 @@ SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
 
 
-@pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "3x3"), ("opencv", "none")])
+CONFIGS = [
+    ("opencv", "3x3"),
+    ("sad", "3x3"),
+    ("opencv", "none"),
+    ("sad", "region4"),
+    ("opencv", "region8"),
+    ("sad", "region8"),
+    ("opencv", "region4"),
+]
+
+
+@pytest.mark.parametrize(("score", "nms"), CONFIGS)
 def test_core_generated(request, score, nms):
     run_cocotb(
         "fastnms_core",
@@ -23,7 +34,7 @@ def test_core_generated(request, score, nms):
     )
 
 
-@pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "3x3"), ("opencv", "none")])
+@pytest.mark.parametrize(("score", "nms"), CONFIGS)
 def test_core_photos(request, score, nms):
     run_cocotb(
         "fastnms_core",

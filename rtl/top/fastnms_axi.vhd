@@ -1,0 +1,530 @@
+-- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
+-- out, optional per-pixel score video out, AXI4-Lite control. See docs/top.md.
+--
+--   s_axis_video ─► skid ─► gate ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
+--                            │  ▲        │  └ tap ─► skid ─► (sat) ─► m_axis_score
+--                   check ◄──┘  │        │
+--                     │   s_axi_ctrl ─► regs ─► interrupt
+--                     └────────────────►
+--
+-- The entity declaration is VHDL-93 (std_logic ports, plain generics) for
+-- Vivado's IP packager; the interface attributes sit in the entity's
+-- declarative part, where the LRM (and GHDL) want port attributes.
+--
+-- aresetn: synchronised by a register chain, then the synchronous reset of
+-- the control state; every output valid is low from the third clock of
+-- aresetn low. Hold aresetn low for at least 4 clocks (AMD IPs ask for 16).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+  use work.fastnms_fast_pkg.all;
+  use work.fastnms_regs_pkg.all;
+
+entity fastnms_axi is
+  generic (
+    MAX_WIDTH         : positive := 1920;
+    MAX_HEIGHT        : positive := 1080;
+    SCORE             : string   := "opencv";
+    NMS               : string   := "3x3";
+    SCORE_VIDEO       : boolean  := false;
+    CORNER_FIFO_DEPTH : positive := 512
+  );
+  port (
+    aclk                  : in    std_logic;
+    aresetn               : in    std_logic;
+    -- video in (AXI4-Stream video, UG934: tuser = start of frame, tlast = end of line)
+    s_axis_video_tdata    : in    std_logic_vector(7 downto 0);
+    s_axis_video_tuser    : in    std_logic;
+    s_axis_video_tlast    : in    std_logic;
+    s_axis_video_tvalid   : in    std_logic;
+    s_axis_video_tready   : out   std_logic;
+    -- corner records (tlast on the last record of each frame)
+    m_axis_corners_tdata  : out   std_logic_vector(63 downto 0);
+    m_axis_corners_tlast  : out   std_logic;
+    m_axis_corners_tvalid : out   std_logic;
+    m_axis_corners_tready : in    std_logic;
+    -- per-pixel score video (SCORE_VIDEO only)
+    m_axis_score_tdata    : out   std_logic_vector(7 downto 0);
+    m_axis_score_tuser    : out   std_logic;
+    m_axis_score_tlast    : out   std_logic;
+    m_axis_score_tvalid   : out   std_logic;
+    m_axis_score_tready   : in    std_logic;
+    -- control (AXI4-Lite)
+    s_axi_ctrl_awaddr     : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_awprot     : in    std_logic_vector(2 downto 0);
+    s_axi_ctrl_awvalid    : in    std_logic;
+    s_axi_ctrl_awready    : out   std_logic;
+    s_axi_ctrl_wdata      : in    std_logic_vector(31 downto 0);
+    s_axi_ctrl_wstrb      : in    std_logic_vector(3 downto 0);
+    s_axi_ctrl_wvalid     : in    std_logic;
+    s_axi_ctrl_wready     : out   std_logic;
+    s_axi_ctrl_bresp      : out   std_logic_vector(1 downto 0);
+    s_axi_ctrl_bvalid     : out   std_logic;
+    s_axi_ctrl_bready     : in    std_logic;
+    s_axi_ctrl_araddr     : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_arprot     : in    std_logic_vector(2 downto 0);
+    s_axi_ctrl_arvalid    : in    std_logic;
+    s_axi_ctrl_arready    : out   std_logic;
+    s_axi_ctrl_rdata      : out   std_logic_vector(31 downto 0);
+    s_axi_ctrl_rresp      : out   std_logic_vector(1 downto 0);
+    s_axi_ctrl_rvalid     : out   std_logic;
+    s_axi_ctrl_rready     : in    std_logic;
+    interrupt             : out   std_logic
+  );
+
+  attribute x_interface_info      : string;
+  attribute x_interface_parameter : string;
+
+  attribute x_interface_info of aclk                      : signal is "xilinx.com:signal:clock:1.0 aclk CLK";
+  attribute x_interface_parameter of aclk                 : signal is
+    "XIL_INTERFACENAME aclk, ASSOCIATED_BUSIF s_axis_video:m_axis_corners:m_axis_score:s_axi_ctrl, " &
+    "ASSOCIATED_RESET aresetn";
+  attribute x_interface_info of aresetn                   : signal is "xilinx.com:signal:reset:1.0 aresetn RST";
+  attribute x_interface_parameter of aresetn              : signal is "XIL_INTERFACENAME aresetn, POLARITY ACTIVE_LOW";
+  attribute x_interface_info of interrupt                 : signal is "xilinx.com:signal:interrupt:1.0 interrupt INTERRUPT";
+  attribute x_interface_parameter of interrupt            : signal is "XIL_INTERFACENAME interrupt, SENSITIVITY LEVEL_HIGH";
+
+  attribute x_interface_info of s_axis_video_tdata        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TDATA";
+  attribute x_interface_info of s_axis_video_tuser        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TUSER";
+  attribute x_interface_info of s_axis_video_tlast        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TLAST";
+  attribute x_interface_info of s_axis_video_tvalid       : signal is "xilinx.com:interface:axis:1.0 s_axis_video TVALID";
+  attribute x_interface_info of s_axis_video_tready       : signal is "xilinx.com:interface:axis:1.0 s_axis_video TREADY";
+  attribute x_interface_parameter of s_axis_video_tdata   : signal is
+    "XIL_INTERFACENAME s_axis_video, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
+    "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
+
+  attribute x_interface_info of m_axis_corners_tdata      : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TDATA";
+  attribute x_interface_info of m_axis_corners_tlast      : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TLAST";
+  attribute x_interface_info of m_axis_corners_tvalid     : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TVALID";
+  attribute x_interface_info of m_axis_corners_tready     : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TREADY";
+  attribute x_interface_parameter of m_axis_corners_tdata : signal is
+    "XIL_INTERFACENAME m_axis_corners, TDATA_NUM_BYTES 8, TUSER_WIDTH 0, HAS_TLAST 1, HAS_TREADY 1, " &
+    "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
+
+  attribute x_interface_info of m_axis_score_tdata        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TDATA";
+  attribute x_interface_info of m_axis_score_tuser        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TUSER";
+  attribute x_interface_info of m_axis_score_tlast        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TLAST";
+  attribute x_interface_info of m_axis_score_tvalid       : signal is "xilinx.com:interface:axis:1.0 m_axis_score TVALID";
+  attribute x_interface_info of m_axis_score_tready       : signal is "xilinx.com:interface:axis:1.0 m_axis_score TREADY";
+  attribute x_interface_parameter of m_axis_score_tdata   : signal is
+    "XIL_INTERFACENAME m_axis_score, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
+    "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
+
+  attribute x_interface_info of s_axi_ctrl_awaddr         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWADDR";
+  attribute x_interface_info of s_axi_ctrl_awprot         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWPROT";
+  attribute x_interface_info of s_axi_ctrl_awvalid        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWVALID";
+  attribute x_interface_info of s_axi_ctrl_awready        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWREADY";
+  attribute x_interface_info of s_axi_ctrl_wdata          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WDATA";
+  attribute x_interface_info of s_axi_ctrl_wstrb          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WSTRB";
+  attribute x_interface_info of s_axi_ctrl_wvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WVALID";
+  attribute x_interface_info of s_axi_ctrl_wready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WREADY";
+  attribute x_interface_info of s_axi_ctrl_bresp          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BRESP";
+  attribute x_interface_info of s_axi_ctrl_bvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BVALID";
+  attribute x_interface_info of s_axi_ctrl_bready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BREADY";
+  attribute x_interface_info of s_axi_ctrl_araddr         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARADDR";
+  attribute x_interface_info of s_axi_ctrl_arprot         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARPROT";
+  attribute x_interface_info of s_axi_ctrl_arvalid        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARVALID";
+  attribute x_interface_info of s_axi_ctrl_arready        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARREADY";
+  attribute x_interface_info of s_axi_ctrl_rdata          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RDATA";
+  attribute x_interface_info of s_axi_ctrl_rresp          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RRESP";
+  attribute x_interface_info of s_axi_ctrl_rvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RVALID";
+  attribute x_interface_info of s_axi_ctrl_rready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RREADY";
+  attribute x_interface_parameter of s_axi_ctrl_awaddr    : signal is
+    "XIL_INTERFACENAME s_axi_ctrl, PROTOCOL AXI4LITE, DATA_WIDTH 32, ADDR_WIDTH 8, READ_WRITE_MODE READ_WRITE, " &
+    "HAS_BURST 0, HAS_LOCK 0, HAS_PROT 1, HAS_CACHE 0, HAS_QOS 0, HAS_REGION 0, HAS_WSTRB 1, HAS_BRESP 1, " &
+    "HAS_RRESP 1, NUM_READ_OUTSTANDING 1, NUM_WRITE_OUTSTANDING 1";
+end entity fastnms_axi;
+
+architecture rtl of fastnms_axi is
+
+  constant X_BITS     : positive := clog2(MAX_WIDTH);
+  constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
+  constant SCORE_BITS : positive := score_width(SCORE);
+  -- A record in the FIFO: kind (2 bits, see fastnms_corner_pack), x, y, score.
+  constant PACKED_BITS : positive := 2 + X_BITS + Y_BITS + SCORE_BITS;
+
+  -- Reset: the synchroniser chain, then the pipeline's reset (also held
+  -- during a soft reset).
+  signal reset_chain : std_logic_vector(2 downto 0);
+  signal rst         : std_logic;
+  signal soft_busy   : std_logic;
+  signal soft_pulse  : std_logic;
+  signal pipe_rst    : std_logic;
+
+  attribute async_reg                : string;
+  attribute async_reg of reset_chain : signal is "TRUE";
+
+  -- Configuration.
+  signal enable        : std_logic;
+  signal cfg_pending   : std_logic;
+  signal cfg_apply     : std_logic;
+  signal cfg_width     : unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+  signal cfg_height    : unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+  signal cfg_threshold : unsigned(7 downto 0);
+
+  -- Video in: the input skid buffer, then the gate.
+  signal v_in   : std_logic_vector(9 downto 0);
+  signal v_out  : std_logic_vector(9 downto 0);
+  signal v_valid : std_logic;
+  signal v_ready : std_logic;
+  signal c_valid : std_logic; -- into the core
+  signal c_ready : std_logic;
+  signal c_data  : std_logic_vector(7 downto 0);
+  signal c_sof   : std_logic;
+  signal c_eol   : std_logic;
+
+  -- Core output.
+  signal k_valid : std_logic;
+  signal k_ready : std_logic;
+  signal k_x     : unsigned(X_BITS - 1 downto 0);
+  signal k_y     : unsigned(Y_BITS - 1 downto 0);
+  signal k_score : unsigned(SCORE_BITS - 1 downto 0);
+  signal k_eof   : std_logic;
+  signal open_frame : std_logic;
+
+  -- Records: packed, then the FIFO.
+  signal p_valid : std_logic;
+  signal p_ready : std_logic;
+  signal p_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
+  signal f_valid : std_logic;
+  signal f_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
+  signal f_busy  : std_logic;
+  signal f_kind  : std_logic_vector(1 downto 0);
+  signal f_empty : std_logic;
+  signal f_last  : std_logic;
+
+  -- Score tap.
+  signal t_valid : std_logic;
+  signal t_ready : std_logic;
+  signal t_score : unsigned(SCORE_BITS - 1 downto 0);
+  signal t_sof   : std_logic;
+  signal t_eol   : std_logic;
+
+  -- Status.
+  signal in_frame        : std_logic;
+  signal busy            : std_logic;
+  signal err_eol_early   : std_logic;
+  signal err_eol_late    : std_logic;
+  signal err_sof_missing : std_logic;
+  signal err_sof_early   : std_logic;
+  signal overflow        : std_logic;
+  signal out_record      : std_logic;
+  signal out_last        : std_logic;
+
+begin
+
+  assert SCORE = "opencv" or SCORE = "sad"
+    report "fastnms_axi: SCORE must be ""opencv"" or ""sad"""
+    severity failure;
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_axi: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
+  assert CORNER_FIFO_DEPTH >= 2 and CORNER_FIFO_DEPTH < 2 ** 16
+    report "fastnms_axi: CORNER_FIFO_DEPTH must be in 2 .. 65535"
+    severity failure;
+
+  -- ---- reset ---------------------------------------------------------------
+
+  reset_sync : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      reset_chain <= reset_chain(reset_chain'high - 1 downto 0) & not aresetn;
+    end if;
+
+  end process reset_sync;
+
+  rst <= reset_chain(reset_chain'high);
+
+  -- A soft reset holds the pipeline in reset until the record packer has
+  -- closed the frame it had open (at least one clock).
+  soft_reset : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      if soft_pulse = '1' then
+        soft_busy <= '1';
+      elsif open_frame = '0' then
+        soft_busy <= '0';
+      end if;
+
+      if rst = '1' then
+        soft_busy <= '0';
+      end if;
+    end if;
+
+  end process soft_reset;
+
+  pipe_rst <= rst or soft_busy;
+
+  -- ---- registers -------------------------------------------------------------
+
+  regs : entity work.fastnms_axi_regs
+    generic map (
+      MAX_WIDTH         => MAX_WIDTH,
+      MAX_HEIGHT        => MAX_HEIGHT,
+      SCORE             => SCORE,
+      NMS               => NMS,
+      SCORE_VIDEO       => SCORE_VIDEO,
+      CORNER_FIFO_DEPTH => CORNER_FIFO_DEPTH
+    )
+    port map (
+      clk             => aclk,
+      rst             => rst,
+      s_axi_awaddr    => s_axi_ctrl_awaddr,
+      s_axi_awvalid   => s_axi_ctrl_awvalid,
+      s_axi_awready   => s_axi_ctrl_awready,
+      s_axi_wdata     => s_axi_ctrl_wdata,
+      s_axi_wstrb     => s_axi_ctrl_wstrb,
+      s_axi_wvalid    => s_axi_ctrl_wvalid,
+      s_axi_wready    => s_axi_ctrl_wready,
+      s_axi_bresp     => s_axi_ctrl_bresp,
+      s_axi_bvalid    => s_axi_ctrl_bvalid,
+      s_axi_bready    => s_axi_ctrl_bready,
+      s_axi_araddr    => s_axi_ctrl_araddr,
+      s_axi_arvalid   => s_axi_ctrl_arvalid,
+      s_axi_arready   => s_axi_ctrl_arready,
+      s_axi_rdata     => s_axi_ctrl_rdata,
+      s_axi_rresp     => s_axi_ctrl_rresp,
+      s_axi_rvalid    => s_axi_ctrl_rvalid,
+      s_axi_rready    => s_axi_ctrl_rready,
+      enable          => enable,
+      soft_reset      => soft_pulse,
+      soft_busy       => soft_busy,
+      cfg_pending     => cfg_pending,
+      cfg_apply       => cfg_apply,
+      cfg_width       => cfg_width,
+      cfg_height      => cfg_height,
+      cfg_threshold   => cfg_threshold,
+      busy            => busy,
+      evt_eol_early   => err_eol_early,
+      evt_eol_late    => err_eol_late,
+      evt_sof_missing => err_sof_missing,
+      evt_sof_early   => err_sof_early,
+      evt_overflow    => overflow,
+      out_record      => out_record,
+      out_last        => out_last,
+      interrupt       => interrupt
+    );
+
+  -- ---- video in ----------------------------------------------------------------
+
+  v_in <= s_axis_video_tuser & s_axis_video_tlast & s_axis_video_tdata;
+
+  input_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => 10
+    )
+    port map (
+      clk       => aclk,
+      rst       => rst,
+      in_valid  => s_axis_video_tvalid,
+      in_ready  => s_axis_video_tready,
+      in_data   => v_in,
+      out_valid => v_valid,
+      out_ready => v_ready,
+      out_data  => v_out
+    );
+
+  gate : entity work.fastnms_video_gate
+    port map (
+      clk         => aclk,
+      rst         => rst,
+      soft        => soft_busy,
+      enable      => enable,
+      cfg_pending => cfg_pending,
+      cfg_apply   => cfg_apply,
+      in_valid    => v_valid,
+      in_ready    => v_ready,
+      in_data     => v_out(7 downto 0),
+      in_sof      => v_out(9),
+      in_eol      => v_out(8),
+      out_valid   => c_valid,
+      out_ready   => c_ready,
+      out_data    => c_data,
+      out_sof     => c_sof,
+      out_eol     => c_eol
+    );
+
+  check : entity work.fastnms_video_check
+    generic map (
+      MAX_WIDTH  => MAX_WIDTH,
+      MAX_HEIGHT => MAX_HEIGHT
+    )
+    port map (
+      clk             => aclk,
+      rst             => pipe_rst,
+      cfg_width       => cfg_width,
+      cfg_height      => cfg_height,
+      pixel           => c_valid and c_ready,
+      pixel_sof       => c_sof,
+      pixel_eol       => c_eol,
+      err_eol_early   => err_eol_early,
+      err_eol_late    => err_eol_late,
+      err_sof_missing => err_sof_missing,
+      err_sof_early   => err_sof_early,
+      in_frame        => in_frame
+    );
+
+  -- ---- the core ------------------------------------------------------------------
+
+  core : entity work.fastnms_core
+    generic map (
+      MAX_WIDTH    => MAX_WIDTH,
+      MAX_HEIGHT   => MAX_HEIGHT,
+      SCORE        => SCORE,
+      NMS          => NMS,
+      READ_LATENCY => 1,
+      SCORE_TAP    => SCORE_VIDEO
+    )
+    port map (
+      clk           => aclk,
+      rst           => pipe_rst,
+      cfg_width     => cfg_width,
+      cfg_height    => cfg_height,
+      cfg_threshold => cfg_threshold,
+      in_valid      => c_valid,
+      in_ready      => c_ready,
+      in_data       => c_data,
+      in_sof        => c_sof,
+      in_eol        => c_eol,
+      out_valid     => k_valid,
+      out_ready     => k_ready,
+      out_x         => k_x,
+      out_y         => k_y,
+      out_score     => k_score,
+      out_eof       => k_eof,
+      tap_valid     => t_valid,
+      tap_ready     => t_ready,
+      tap_score     => t_score,
+      tap_sof       => t_sof,
+      tap_eol       => t_eol,
+      err_line      => open,
+      err_frame     => open
+    );
+
+  -- ---- corner records ----------------------------------------------------------
+
+  pack : entity work.fastnms_corner_pack
+    generic map (
+      X_BITS     => X_BITS,
+      Y_BITS     => Y_BITS,
+      SCORE_BITS => SCORE_BITS
+    )
+    port map (
+      clk        => aclk,
+      rst        => rst,
+      abort      => soft_busy,
+      in_valid   => k_valid,
+      in_ready   => k_ready,
+      in_x       => k_x,
+      in_y       => k_y,
+      in_score   => k_score,
+      in_eof     => k_eof,
+      out_valid  => p_valid,
+      out_ready  => p_ready,
+      out_data   => p_data,
+      open_frame => open_frame
+    );
+
+  fifo : entity work.fastnms_fifo
+    generic map (
+      DEPTH => CORNER_FIFO_DEPTH,
+      WIDTH => PACKED_BITS
+    )
+    port map (
+      clk       => aclk,
+      rst       => rst,
+      in_valid  => p_valid,
+      in_ready  => p_ready,
+      in_data   => p_data,
+      out_valid => f_valid,
+      out_ready => m_axis_corners_tready,
+      out_data  => f_data,
+      busy      => f_busy
+    );
+
+  f_kind  <= f_data(PACKED_BITS - 1 downto PACKED_BITS - 2);
+  f_empty <= f_kind(1) and f_kind(0);
+  f_last  <= f_kind(1) or f_kind(0);
+
+  record_out : process (all) is
+  begin
+
+    m_axis_corners_tdata              <= (others => '0');
+    m_axis_corners_tdata(REC_X_LSB + X_BITS - 1 downto REC_X_LSB) <=
+      f_data(X_BITS + Y_BITS + SCORE_BITS - 1 downto Y_BITS + SCORE_BITS);
+    m_axis_corners_tdata(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB) <=
+      f_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS);
+    m_axis_corners_tdata(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <=
+      f_data(SCORE_BITS - 1 downto 0);
+    m_axis_corners_tdata(REC_EMPTY)   <= f_empty;
+    m_axis_corners_tdata(REC_LAST)    <= f_last;
+    m_axis_corners_tdata(REC_ABORTED) <= f_kind(1) and not f_kind(0);
+
+  end process record_out;
+
+  m_axis_corners_tlast  <= f_last;
+  m_axis_corners_tvalid <= f_valid;
+
+  out_record <= f_valid and m_axis_corners_tready and not f_empty;
+  out_last   <= f_valid and m_axis_corners_tready and f_last;
+
+  -- ---- status ----------------------------------------------------------------------
+
+  status : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      busy     <= in_frame or open_frame or f_busy;
+      overflow <= k_valid and not k_ready and not soft_busy;
+    end if;
+
+  end process status;
+
+  -- ---- score video -------------------------------------------------------------------
+
+  score_stream : if SCORE_VIDEO generate
+    signal t_in  : std_logic_vector(9 downto 0);
+    signal t_out : std_logic_vector(9 downto 0);
+    signal t_sat : std_logic_vector(7 downto 0);
+  begin
+
+    -- The score as 8 bits, saturated (the sad score has 12).
+    t_sat <= (others => '1') when resize(t_score, 8) /= t_score else
+             std_logic_vector(resize(t_score, 8));
+    t_in  <= t_sof & t_eol & t_sat;
+
+    score_buffer : entity work.fastnms_skid_buffer
+      generic map (
+        WIDTH => 10
+      )
+      port map (
+        clk       => aclk,
+        rst       => rst,
+        in_valid  => t_valid,
+        in_ready  => t_ready,
+        in_data   => t_in,
+        out_valid => m_axis_score_tvalid,
+        out_ready => m_axis_score_tready,
+        out_data  => t_out
+      );
+
+    m_axis_score_tuser <= t_out(9);
+    m_axis_score_tlast <= t_out(8);
+    m_axis_score_tdata <= t_out(7 downto 0);
+
+  end generate score_stream;
+
+  no_score_stream : if not SCORE_VIDEO generate
+    t_ready             <= '1';
+    m_axis_score_tvalid <= '0';
+    m_axis_score_tuser  <= '0';
+    m_axis_score_tlast  <= '0';
+    m_axis_score_tdata  <= (others => '0');
+  end generate no_score_stream;
+
+end architecture rtl;

@@ -1,0 +1,110 @@
+-- Corner records with the end of frame folded in: fastnms_core gives each
+-- frame's records, then a separate end-of-frame beat; this block holds the
+-- latest record back until it knows what follows it, and sends
+--   a record followed by another record     with KIND_RECORD,
+--   a record followed by the end of frame   with KIND_LAST,
+--   an end of frame with no record before   as KIND_EMPTY (x, y, score 0).
+-- So every frame ends with exactly one record marked last, and no record is
+-- lost or repeated. One record per clock in and out.
+--
+-- abort (a soft reset in progress; the core is held in reset and its output
+-- is ignored) closes the frame instead: a held record leaves as KIND_ABORTED.
+-- open_frame is '1' while a record is held (so while abort must be kept).
+--
+-- out_data is kind & x & y & score. Ready paths: in_ready is the output skid
+-- buffer's registered ready (gated by abort, a register).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+entity fastnms_corner_pack is
+  generic (
+    X_BITS     : positive := 11;
+    Y_BITS     : positive := 11;
+    SCORE_BITS : positive := 8
+  );
+  port (
+    clk        : in    std_logic;
+    rst        : in    std_logic;
+    abort      : in    std_logic;
+    in_valid   : in    std_logic;
+    in_ready   : out   std_logic;
+    in_x       : in    unsigned(X_BITS - 1 downto 0);
+    in_y       : in    unsigned(Y_BITS - 1 downto 0);
+    in_score   : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_eof     : in    std_logic;
+    out_valid  : out   std_logic;
+    out_ready  : in    std_logic;
+    out_data   : out   std_logic_vector(X_BITS + Y_BITS + SCORE_BITS + 1 downto 0);
+    open_frame : out   std_logic
+  );
+end entity fastnms_corner_pack;
+
+architecture rtl of fastnms_corner_pack is
+
+  constant KIND_RECORD  : std_logic_vector(1 downto 0) := "00";
+  constant KIND_LAST    : std_logic_vector(1 downto 0) := "01";
+  constant KIND_ABORTED : std_logic_vector(1 downto 0) := "10";
+  constant KIND_EMPTY   : std_logic_vector(1 downto 0) := "11";
+
+  subtype record_t is std_logic_vector(X_BITS + Y_BITS + SCORE_BITS - 1 downto 0);
+
+  signal held_valid : std_logic;
+  signal held       : record_t;
+  signal take       : std_logic; -- a beat of the core is taken
+  signal emit_valid : std_logic;
+  signal emit_kind  : std_logic_vector(1 downto 0);
+  signal emit_data  : record_t;
+  signal skid_ready : std_logic;
+
+begin
+
+  take     <= in_valid and skid_ready and not abort;
+  in_ready <= skid_ready and not abort;
+
+  emit_valid <= (abort and held_valid) or (in_valid and not abort and (in_eof or held_valid));
+  emit_kind  <= KIND_ABORTED when abort = '1' else
+                KIND_RECORD when in_eof = '0' else
+                KIND_LAST when held_valid = '1' else
+                KIND_EMPTY;
+  emit_data  <= held when held_valid = '1' else
+                (others => '0');
+
+  hold : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if abort = '1' then
+        if skid_ready = '1' then
+          held_valid <= '0';
+        end if;
+      elsif take = '1' then
+        held_valid <= not in_eof;
+        held       <= std_logic_vector(in_x) & std_logic_vector(in_y) & std_logic_vector(in_score);
+      end if;
+
+      if rst = '1' then
+        held_valid <= '0';
+      end if;
+    end if;
+
+  end process hold;
+
+  open_frame <= held_valid;
+
+  output_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => out_data'length
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => emit_valid,
+      in_ready  => skid_ready,
+      in_data   => emit_kind & emit_data,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => out_data
+    );
+
+end architecture rtl;

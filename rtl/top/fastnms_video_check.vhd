@@ -1,0 +1,162 @@
+-- Input checker: watches the pixels that enter fastnms_core and classifies
+-- malformed video (AXI4-Stream video, AMD UG934: tuser on the first pixel of
+-- a frame, tlast on the last pixel of each line) against the frame size in
+-- use. It only observes; the core recovers by itself (fastnms_window).
+--
+-- Lines are delimited by tlast and frames by tuser and the line count, so
+-- one bad line is reported once and does not shift the following ones:
+--   err_eol_early   tlast before the WIDTH-th pixel of a line
+--   err_eol_late    no tlast on the WIDTH-th pixel of a line (the line then
+--                   runs until its tlast)
+--   err_sof_missing a pixel outside any frame: a frame whose first pixel has
+--                   no tuser, or pixels after the HEIGHT-th line
+--   err_sof_early   tuser inside a frame (it starts a new frame)
+-- Each is a one-clock pulse, two clocks after the pixel. in_frame is '1'
+-- from a start of frame to the end of its HEIGHT-th line.
+--
+-- cfg_width and cfg_height (7 .. MAX_*) must be stable from two clocks
+-- before a start-of-frame pixel to one clock after it, as the core needs.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_video_check is
+  generic (
+    MAX_WIDTH  : positive := 1920;
+    MAX_HEIGHT : positive := 1080
+  );
+  port (
+    clk             : in    std_logic;
+    rst             : in    std_logic;
+    cfg_width       : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height      : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    pixel           : in    std_logic; -- a pixel enters the core on this clock
+    pixel_sof       : in    std_logic;
+    pixel_eol       : in    std_logic;
+    err_eol_early   : out   std_logic;
+    err_eol_late    : out   std_logic;
+    err_sof_missing : out   std_logic;
+    err_sof_early   : out   std_logic;
+    in_frame        : out   std_logic
+  );
+end entity fastnms_video_check;
+
+architecture rtl of fastnms_video_check is
+
+  subtype x_t is unsigned(cfg_width'range);
+
+  subtype y_t is unsigned(cfg_height'range);
+
+  -- The observed pixel, one clock later.
+  signal p_valid : std_logic;
+  signal p_sof   : std_logic;
+  signal p_eol   : std_logic;
+
+  -- Size minus 2, registered from the configuration, and the copies taken
+  -- with the start of frame.
+  signal cfg_w_m2 : x_t;
+  signal cfg_h_m2 : y_t;
+  signal w_m2     : x_t;
+  signal h_m2     : y_t;
+
+  signal active : std_logic; -- inside a frame
+  signal x      : x_t;       -- index in its line of the observed pixel
+  signal y      : y_t;       -- index of its line
+  signal x_last : std_logic; -- the observed pixel should end its line
+  signal late   : std_logic; -- this line is already longer than WIDTH
+  signal y_last : std_logic; -- the observed pixel's line is the last one
+  signal framed : std_logic; -- the observed pixel belongs to a frame
+
+begin
+
+  framed <= p_valid and (p_sof or active);
+
+  checks : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      p_valid  <= pixel;
+      p_sof    <= pixel_sof;
+      p_eol    <= pixel_eol;
+      cfg_w_m2 <= cfg_width - 2;
+      cfg_h_m2 <= cfg_height - 2;
+
+      err_eol_early   <= '0';
+      err_eol_late    <= '0';
+      err_sof_missing <= p_valid and not p_sof and not active;
+      err_sof_early   <= p_valid and p_sof and active;
+
+      if p_valid = '1' and p_sof = '1' then
+        active <= '1';
+        w_m2   <= cfg_w_m2;
+        h_m2   <= cfg_h_m2;
+      end if;
+
+      -- x is the index of the pixel after the observed one (0 after a tlast).
+      if framed = '1' then
+        if p_eol = '1' then
+          x <= (others => '0');
+        elsif p_sof = '1' then
+          x <= to_unsigned(1, x'length);
+        else
+          x <= x + 1;
+        end if;
+      end if;
+
+      if framed = '1' then
+        -- At a start of frame the pixel is (0, 0): x_last, late, y_last are 0.
+        if p_eol = '1' then
+          err_eol_early <= not ((x_last and not p_sof) or (late and not p_sof));
+          x_last        <= '0';
+          late          <= '0';
+          if y_last = '1' and p_sof = '0' then
+            active <= '0';
+            y_last <= '0';
+          elsif p_sof = '1' then
+            y_last <= '0';
+          else
+            y_last <= to_sl(y = h_m2);
+          end if;
+        else
+          if x_last = '1' and p_sof = '0' then
+            err_eol_late <= '1';
+            late         <= '1';
+          end if;
+          if p_sof = '1' then
+            late <= '0';
+          end if;
+          x_last <= to_sl(x = w_m2) and not p_sof and not x_last;
+        end if;
+      end if;
+
+      if framed = '1' and p_eol = '1' then
+        if p_sof = '1' then
+          y <= to_unsigned(1, y'length);
+        else
+          y <= y + 1;
+        end if;
+      elsif framed = '1' and p_sof = '1' then
+        y <= (others => '0');
+      end if;
+
+      if rst = '1' then
+        p_valid         <= '0';
+        active          <= '0';
+        x_last          <= '0';
+        late            <= '0';
+        y_last          <= '0';
+        err_eol_early   <= '0';
+        err_eol_late    <= '0';
+        err_sof_missing <= '0';
+        err_sof_early   <= '0';
+      end if;
+    end if;
+
+  end process checks;
+
+  in_frame <= active;
+
+end architecture rtl;

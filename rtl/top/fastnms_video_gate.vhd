@@ -1,0 +1,124 @@
+-- The gate between the video input and fastnms_core: it decides at each start
+-- of frame whether the frame is processed, and applies a new configuration
+-- safely.
+--
+-- At a pixel with sof:
+--   enable = '0'          the pixel is dropped and the gate discards every
+--                         pixel up to the next start of frame;
+--   cfg_pending = '1'     the pixel waits: cfg_apply pulses (the register file
+--                         copies the new threshold and size to the core's
+--                         inputs), then the gate holds the pixel SETTLE clocks
+--                         more, so the core's configuration is stable for the
+--                         two clocks before it takes the pixel;
+--   otherwise             the pixel passes, and so does the rest of the frame.
+-- While discarding, pixels are consumed and dropped. soft (a soft reset in
+-- progress) blocks the input and clears the output register; afterwards the
+-- gate discards up to the next start of frame. After rst it passes everything
+-- (the core itself drops pixels outside frames).
+--
+-- Registered readies: in_ready depends on registers only, and the output is a
+-- skid buffer.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_video_gate is
+  generic (
+    SETTLE : positive := 3
+  );
+  port (
+    clk         : in    std_logic;
+    rst         : in    std_logic;
+    soft        : in    std_logic;
+    enable      : in    std_logic;
+    cfg_pending : in    std_logic;
+    cfg_apply   : out   std_logic;
+    in_valid    : in    std_logic;
+    in_ready    : out   std_logic;
+    in_data     : in    std_logic_vector(7 downto 0);
+    in_sof      : in    std_logic;
+    in_eol      : in    std_logic;
+    out_valid   : out   std_logic;
+    out_ready   : in    std_logic;
+    out_data    : out   std_logic_vector(7 downto 0);
+    out_sof     : out   std_logic;
+    out_eol     : out   std_logic
+  );
+end entity fastnms_video_gate;
+
+architecture rtl of fastnms_video_gate is
+
+  signal discard    : std_logic;
+  signal wait_count : natural range 0 to SETTLE;
+  signal open_gate  : std_logic; -- not soft, not settling
+  signal pass       : std_logic; -- the pixel goes to the core
+  signal drop       : std_logic; -- the pixel is consumed and dropped
+  signal skid_ready : std_logic;
+  signal skid_rst   : std_logic;
+  signal skid_out   : std_logic_vector(9 downto 0);
+
+begin
+
+  open_gate <= not soft and to_sl(wait_count = 0);
+  pass      <= open_gate and ((not in_sof and not discard) or (in_sof and enable and not cfg_pending));
+  drop      <= open_gate and ((not in_sof and discard) or (in_sof and not enable));
+  in_ready  <= (pass and skid_ready) or drop;
+
+  control : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      cfg_apply <= '0';
+      if wait_count /= 0 then
+        wait_count <= wait_count - 1;
+      end if;
+
+      if in_valid = '1' and in_sof = '1' and open_gate = '1' then
+        if enable = '0' then
+          discard <= '1';
+        elsif cfg_pending = '1' then
+          cfg_apply <= '1';
+          wait_count <= SETTLE;
+        elsif skid_ready = '1' then
+          discard <= '0';
+        end if;
+      end if;
+
+      if soft = '1' then
+        discard <= '1';
+        wait_count <= 0;
+      end if;
+      if rst = '1' then
+        discard   <= '0';
+        wait_count <= 0;
+        cfg_apply <= '0';
+      end if;
+    end if;
+
+  end process control;
+
+  skid_rst <= rst or soft;
+
+  output_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => 10
+    )
+    port map (
+      clk       => clk,
+      rst       => skid_rst,
+      in_valid  => in_valid and pass,
+      in_ready  => skid_ready,
+      in_data   => in_sof & in_eol & in_data,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => skid_out
+    );
+
+  out_sof  <= skid_out(9);
+  out_eol  <= skid_out(8);
+  out_data <= skid_out(7 downto 0);
+
+end architecture rtl;
