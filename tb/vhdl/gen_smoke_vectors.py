@@ -20,7 +20,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-
 from fastnms.model import detect
 
 HERE = Path(__file__).resolve().parent
