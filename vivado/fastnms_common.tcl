@@ -1,0 +1,225 @@
+# Settings shared by the Vivado scripts of this folder: paths, the IP's VLNV,
+# the target part, the RTL file list and a small option parser.
+#
+# Plain Tcl 8.5 with no Vivado command, so tb/test_vivado_tcl.py runs it as it
+# is under tclsh (or Python's tkinter). Every path is derived from this
+# file's own location: the scripts work from any directory.
+
+namespace eval fastnms {
+    variable script_dir [file normalize [file dirname [info script]]]
+    variable repo       [file dirname $script_dir]
+
+    # The packaged IP: vendor:library:name:version. The version follows
+    # pyproject.toml's major.minor (checked by tb/test_vivado_tcl.py).
+    variable vendor  fastnms
+    variable library vision
+    variable name    fastnms_axi
+    variable version 0.1
+    variable top     fastnms_axi
+
+    # ZedBoard and ZC702 both carry this Zynq-7020.
+    variable part xc7z020clg484-1
+
+    # RTL folders, lowest layer first.
+    variable areas {common fast nms core top}
+
+    # The out-of-context clock constraint (aclk).
+    variable ooc_xdc [file join $repo constraints fastnms_ooc.xdc]
+}
+
+proc fastnms::vlnv {} {
+    variable vendor
+    variable library
+    variable name
+    variable version
+    return "$vendor:$library:$name:$version"
+}
+
+# A path under the repository.
+proc fastnms::path {args} {
+    variable repo
+    return [file join $repo {*}$args]
+}
+
+proc fastnms::read_text {path} {
+    set f [open $path r]
+    set text [read $f]
+    close $f
+    return $text
+}
+
+# Every rtl/<area>/*.vhd in compile order: each file after the files that
+# define the packages it uses (use work.X) and the entities it instantiates
+# (entity work.X); otherwise in folder order, then by name. The same rule as
+# tb/harness.py, so a new file under rtl/ is picked up with no edit here.
+proc fastnms::rtl_files {} {
+    variable areas
+    set files {}
+    foreach area $areas {
+        foreach f [lsort [glob -nocomplain -directory [path rtl $area] *.vhd]] {
+            lappend files $f
+        }
+    }
+    set defined_in [dict create]
+    set uses [dict create]
+    foreach f $files {
+        # Lower case, comments removed.
+        set text [string tolower [read_text $f]]
+        regsub -all -- {--[^\n]*} $text {} text
+        foreach {- unit} [regexp -all -inline -- {(?:^|\n)\s*(?:entity|package)\s+(\w+)\s+is\M} $text] {
+            dict set defined_in $unit $f
+        }
+        set used {}
+        foreach {- unit} [regexp -all -inline -- {\m(?:entity|use)\s+work\.(\w+)} $text] {
+            if {$unit ni $used} {
+                lappend used $unit
+            }
+        }
+        dict set uses $f $used
+    }
+    set ordered {}
+    set pending $files
+    while {[llength $pending]} {
+        set ready {}
+        set waiting {}
+        foreach f $pending {
+            set ok 1
+            foreach unit [dict get $uses $f] {
+                if {![dict exists $defined_in $unit]} {
+                    error "fastnms: $f uses work.$unit, which no file under rtl/ defines"
+                }
+                set dep [dict get $defined_in $unit]
+                if {$dep ne $f && $dep ni $ordered} {
+                    set ok 0
+                }
+            }
+            if {$ok} {
+                lappend ready $f
+            } else {
+                lappend waiting $f
+            }
+        }
+        if {![llength $ready]} {
+            error "fastnms: circular dependency among $waiting"
+        }
+        set ordered [concat $ordered $ready]
+        set pending $waiting
+    }
+    return $ordered
+}
+
+# The packaging wrapper: the IP packager reads the top-level file as VHDL-93
+# (UG1118, "Top-Level HDL Requirements": a VHDL-2008 top level needs a VHDL or
+# Verilog wrapper), while rtl/ is VHDL-2008. The wrapper is entity `name`,
+# with the entity declaration of `top_entity` copied word for word (generics,
+# ports, X_INTERFACE attributes: VHDL-93 there), and an architecture that
+# instantiates work.`top_entity` with every generic and port mapped by name.
+proc fastnms::ip_wrapper {top_file top_entity name} {
+    set text [read_text $top_file]
+    set lower [string tolower $text]
+    set start [string first "entity [string tolower $top_entity] is" $lower]
+    set end_at [string first "end entity [string tolower $top_entity]" $lower $start]
+    if {$start < 0 || $end_at < 0} {
+        error "fastnms: no 'entity $top_entity is ... end entity $top_entity' in $top_file"
+    }
+    set end_at [string first ";" $text $end_at]
+    set entity [string range $text $start $end_at]
+
+    # Generic and port names, from the declaration without its comments.
+    regsub -all -- {--[^\n]*} $entity {} code
+    set generics {}
+    set ports {}
+    set port_at [lindex [regexp -nocase -indices -inline -- {\mport\s*\(} $code] 0 0]
+    if {$port_at eq ""} {
+        set port_at [string length $code]
+    }
+    set generic_at [lindex [regexp -nocase -indices -inline -- {\mgeneric\s*\(} $code] 0 0]
+    if {$generic_at ne "" && $generic_at < $port_at} {
+        set clause [string range $code $generic_at [expr {$port_at - 1}]]
+        set clause [string range $clause [expr {[string first "(" $clause] + 1}] end]
+        foreach {- names} [regexp -all -inline -- {(\w+(?:\s*,\s*\w+)*)\s*:[^=]} $clause] {
+            foreach n [split $names ,] {
+                lappend generics [string trim $n]
+            }
+        }
+    }
+    set clause [string range $code $port_at end]
+    foreach {- names} [regexp -all -nocase -inline -- \
+            {(\w+(?:\s*,\s*\w+)*)\s*:\s*(?:in|out|inout|buffer)\M} $clause] {
+        foreach n [split $names ,] {
+            lappend ports [string trim $n]
+        }
+    }
+
+    set map_lines {}
+    foreach {kind names} [list generic $generics port $ports] {
+        if {![llength $names]} {
+            continue
+        }
+        set width 0
+        foreach n $names {
+            set width [expr {max($width, [string length $n])}]
+        }
+        set items {}
+        foreach n $names {
+            lappend items [format "      %-*s => %s" $width $n $n]
+        }
+        lappend map_lines "    $kind map (\n[join $items ,\n]\n    )"
+    }
+
+    set renamed [regsub -nocase -all -- "\\m$top_entity\\M" $entity $name]
+    return [join [list \
+        "-- Generated by vivado/package_ip.tcl (fastnms::ip_wrapper) from $top_entity's" \
+        "-- entity declaration: the VHDL-93 top level the Vivado IP packager needs." \
+        "library ieee;" \
+        "  use ieee.std_logic_1164.all;" \
+        "" \
+        $renamed \
+        "" \
+        "architecture wrapper of $name is" \
+        "begin" \
+        "" \
+        "  ip : entity work.$top_entity" \
+        "[join $map_lines \n];" \
+        "" \
+        "end architecture wrapper;" \
+        ""] \n]
+}
+
+# The clock period (ns) of the out-of-context constraint file.
+proc fastnms::ooc_period {} {
+    variable ooc_xdc
+    if {![regexp -- {create_clock\s+-period\s+([0-9.]+)} [read_text $ooc_xdc] - period]} {
+        error "fastnms: no create_clock -period in $ooc_xdc"
+    }
+    return $period
+}
+
+# Command-line options (the words after -tclargs): `defaults` maps each
+# --option to its default value; the options listed in `flags` take no value
+# and are 0 unless given.
+proc fastnms::parse_args {argv defaults {flags {}}} {
+    set opts $defaults
+    foreach flag $flags {
+        dict set opts $flag 0
+    }
+    set i 0
+    while {$i < [llength $argv]} {
+        set arg [lindex $argv $i]
+        if {$arg in $flags} {
+            dict set opts $arg 1
+            incr i
+            continue
+        }
+        if {![dict exists $defaults $arg]} {
+            set known [lsort [concat [dict keys $defaults] $flags]]
+            error "unknown option '$arg' (options: [join $known {, }])"
+        }
+        if {$i + 1 >= [llength $argv]} {
+            error "option $arg needs a value"
+        }
+        dict set opts $arg [lindex $argv [expr {$i + 1}]]
+        incr i 2
+    }
+    return $opts
+}
