@@ -39,10 +39,13 @@ class TclError(Exception):
 
 def run_tcl(script: str) -> str:
     """Evaluates `script` in a fresh interpreter and returns its result."""
+    kind = backend()
+    if kind is None:
+        raise RuntimeError("no Tcl interpreter (neither tkinter nor tclsh)")
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "driver.tcl"
         path.write_text(script)
-        if backend() == "tkinter":
+        if kind == "tkinter":
             import tkinter
 
             interp = tkinter.Tcl()
@@ -50,16 +53,23 @@ def run_tcl(script: str) -> str:
                 return str(interp.eval(f"source {{{path}}}"))
             except tkinter.TclError as err:
                 raise TclError(str(interp.eval("set ::errorInfo"))) from err
+        # The result goes to a file: stdout carries what the script prints.
         wrapper = Path(tmp) / "wrapper.tcl"
+        result = Path(tmp) / "result.txt"
+        # (exit is renamed first: the dry-run stubs replace it.)
         wrapper.write_text(
-            f"if {{[catch {{source {{{path}}}}} result]}} {{\n"
-            "    puts -nonewline stderr $::errorInfo\n    exit 1\n}\n"
-            "puts -nonewline stdout $result\n"
+            "rename exit __tclcheck_exit\n"
+            f"set code [catch {{source {{{path}}}}} result]\n"
+            f"set f [open {{{result}}} w]\n"
+            "puts -nonewline $f [expr {$code == 1 ? $::errorInfo : $result}]\n"
+            "close $f\n"
+            "__tclcheck_exit [expr {$code == 1}]\n"
         )
         proc = subprocess.run(["tclsh", str(wrapper)], capture_output=True, text=True)
+        print(proc.stdout, end="")
         if proc.returncode:
-            raise TclError(proc.stderr)
-        return proc.stdout
+            raise TclError(result.read_text() if result.exists() else proc.stderr)
+        return result.read_text()
 
 
 def incomplete_commands(path: Path) -> list[str]:
@@ -117,6 +127,8 @@ def complete_commands_fallback(text: str) -> list[str]:
             depth += {"{": 1, "}": -1}.get(c, 0)
         elif c == '"':
             quoted = not quoted
+        elif quoted and c in "{}":
+            pass
         elif c == "{":
             depth = 1
         elif c == "[":

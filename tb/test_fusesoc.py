@@ -37,13 +37,18 @@ def core() -> dict:
     return yaml.safe_load(CORE.read_text())
 
 
+def hide_from_core_scans() -> None:
+    """A FUSESOC_IGNORE file in build/fusesoc: the copies of the core made
+    there are never found by a scan of the repository (--cores-root .)."""
+    WORK.mkdir(parents=True, exist_ok=True)
+    (WORK / "FUSESOC_IGNORE").touch()
+
+
 def run_fusesoc(cores_root: Path, work_root: Path, *args: str) -> subprocess.CompletedProcess:
     """`fusesoc run` of fastnms in `work_root`, with an empty configuration and
     its own cache, so nothing outside the repository's build/ is read or
-    written. build/fusesoc holds a FUSESOC_IGNORE file: copies of the core
-    made there are never found by a scan of the repository."""
-    WORK.mkdir(parents=True, exist_ok=True)
-    (WORK / "FUSESOC_IGNORE").touch()
+    written."""
+    hide_from_core_scans()
     shutil.rmtree(work_root, ignore_errors=True)
     work_root.mkdir(parents=True)
     config = work_root.parent / f"{work_root.name}.conf"
@@ -132,6 +137,7 @@ def test_sim_target_fails_on_a_wrong_expectation() -> None:
     one: the testbench must stop with a failure, and fusesoc must say so."""
     if shutil.which("ghdl") is None:
         pytest.skip("no ghdl")
+    hide_from_core_scans()
     root = WORK / "negative" / "root"
     shutil.rmtree(root, ignore_errors=True)
     root.mkdir(parents=True)

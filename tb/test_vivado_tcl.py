@@ -378,7 +378,7 @@ def test_create_bd_with_implementation() -> None:
     ],
 )
 def test_create_bd_rejects_bad_options(argv: list[str], message: str) -> None:
-    root = sandbox("create_bd_options")
+    root = sandbox(f"create_bd_options{argv[0]}{len(argv)}")
     calls, error = tclcheck.dry_run(
         root / "vivado" / "create_bd_zc7z20.tcl",
         ["--ip-repo", str(fake_ip_repo(root)), *argv],
@@ -503,6 +503,7 @@ def ghdl(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
     return subprocess.run(["ghdl", *args], cwd=cwd, capture_output=True, text=True)
 
 
+@needs_tcl
 @needs_top
 def test_ip_wrapper_is_vhdl93_and_elaborates() -> None:
     """The IP packager reads the top-level file as VHDL-93 (UG1118), so
