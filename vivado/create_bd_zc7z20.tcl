@@ -224,7 +224,7 @@ save_bd_design
 
 set map [open [file join $out_dir address_map.txt] w]
 puts $map "# $design: slave segments seen from the PS (GP0) and the DMAs (HP0)"
-foreach space [get_bd_addr_spaces -quiet {ps7/Data vdma/Data_MM2S dma/Data_S2MM}] {
+foreach space [get_bd_addr_spaces -quiet -of_objects [get_bd_cells {ps7 vdma dma}]] {
     foreach seg [get_bd_addr_segs -quiet -of_objects $space] {
         puts $map [format "%-24s %-40s offset %s range %s" $space \
             [get_property NAME $seg] [get_property OFFSET $seg] [get_property RANGE $seg]]
