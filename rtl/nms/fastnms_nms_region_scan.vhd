@@ -120,6 +120,10 @@ architecture rtl of fastnms_nms_region_scan is
   signal nb_a        : label_t;
   signal nb_b        : label_t;
   signal nb_c        : label_t;
+  signal has_a       : std_logic;
+  signal has_b       : std_logic;
+  signal has_c       : std_logic;
+  signal has_n       : std_logic;
   signal first_nb    : label_t;
   signal is_new      : std_logic;
   signal lab         : label_t;
@@ -169,65 +173,36 @@ begin
   nb_c  <= unsigned(line_c) when above = '1' and last_col = '0' else NONE;
 
   -- Decision for the pixel: its label, union, pass and end events.
-  decide : process (all) is
+  has_a <= (or nb_a) and to_sl(EIGHT);
+  has_b <= or nb_b;
+  has_c <= (or nb_c) and to_sl(EIGHT);
+  has_n <= or nb_c;
 
-    variable a : label_t;
-    variable c : label_t;
+  first_nb <= nb_a when has_a = '1' else
+              nb_b when has_b = '1' else
+              nb_c when has_c = '1' else
+              NONE;
 
-  begin
+  -- A run touches a run of the row above first when that run enters the
+  -- neighbourhood: C under 8-connectivity (B empty), B under 4 (A empty);
+  -- a run starting beside two runs above (A and C, B empty) touches both.
+  union_label <= nb_c when EIGHT and has_b = '0' and (run_on = '1' or has_a = '1') else
+                 nb_b when not EIGHT and run_on = '1' and (or nb_a) = '0' else
+                 NONE;
 
-    a := NONE;
-    c := NONE;
-    if EIGHT then
-      a := nb_a;
-      c := nb_c;
-    end if;
+  -- The run of the row above left behind: the one ending at column x-1
+  -- (8-connectivity) or x (4), and at the end of a row the one ending there.
+  pass_label <= nb_a when EIGHT and has_b = '0' else
+                nb_b when EIGHT and last_col = '1' else
+                nb_b when not EIGHT and (has_n = '0' or last_col = '1') else
+                NONE;
 
-    if a /= NONE then
-      first_nb <= a;
-    elsif nb_b /= NONE then
-      first_nb <= nb_b;
-    else
-      first_nb <= c;
-    end if;
-
-    -- A run touches a run of the row above first when that run enters the
-    -- neighbourhood: C under 8-connectivity (B empty), B under 4 (A empty);
-    -- a run starting beside two runs above (A and C, B empty) touches both.
-    union_label <= NONE;
-    if run_on = '1' then
-      if EIGHT then
-        if nb_b = NONE then
-          union_label <= nb_c;
-        end if;
-      elsif nb_a = NONE then
-        union_label <= nb_b;
-      end if;
-    elsif EIGHT and nb_b = NONE and a /= NONE then
-      union_label <= c;
-    end if;
-
-    -- The run of the row above left behind: the one ending at column x-1
-    -- (8-connectivity) or x (4), and at the end of a row the one ending there.
-    pass_label <= NONE;
-    if EIGHT then
-      if nb_b = NONE then
-        pass_label <= nb_a;
-      elsif last_col = '1' then
-        pass_label <= nb_b;
-      end if;
-    elsif nb_c = NONE or last_col = '1' then
-      pass_label <= nb_b;
-    end if;
-
-  end process decide;
-
-  is_new     <= corner and not run_on and to_sl(first_nb = NONE);
+  is_new     <= corner and not run_on and not (has_a or has_b or has_c);
   lab        <= run_label when run_on = '1' else
-                spare_label when first_nb = NONE else
-                first_nb;
-  do_union   <= corner and to_sl(union_label /= NONE and union_label /= lab);
-  pass_raw   <= to_sl(pass_label /= NONE);
+                first_nb when (has_a or has_b or has_c) = '1' else
+                spare_label;
+  do_union   <= corner and (or union_label) and to_sl(union_label /= lab);
+  pass_raw   <= or pass_label;
   credit_in  <= run_credit when run_on = '1' else is_new;
   -- The run's own label passing above while the run goes on: the run takes
   -- over that count.

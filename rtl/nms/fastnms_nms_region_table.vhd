@@ -84,7 +84,12 @@ architecture rtl of fastnms_nms_region_table is
     END_READ, END_COUNT, END_BEST, PASS_READ, PASS_COUNT, PASS_EMIT, EOF_EMIT
   );
 
-  type step_t is (STEP_NEW, STEP_UNION, STEP_END, STEP_PASS, STEP_EOF);
+  -- The steps of an event beat, in order.
+  constant STEP_NEW   : natural := 0;
+  constant STEP_UNION : natural := 1;
+  constant STEP_END   : natural := 2;
+  constant STEP_PASS  : natural := 3;
+  constant STEP_EOF   : natural := 4;
 
   signal state        : state_t;
   -- Label RAMs: one read address for all fields.
@@ -163,7 +168,7 @@ architecture rtl of fastnms_nms_region_table is
 
   -- The first step at or after `from` that the event beat asks for.
   function first_step (
-    from : step_t; f_new, f_union, f_end, f_pass, f_eof : std_logic) return state_t is
+    from : natural; f_new, f_union, f_end, f_pass, f_eof : std_logic) return state_t is
   begin
 
     if from = STEP_NEW and f_new = '1' then

@@ -5,7 +5,9 @@
 from __future__ import annotations
 
 import ast
+import json
 import os
+from pathlib import Path
 
 import cocotb
 import numpy as np
@@ -199,3 +201,29 @@ async def idle_output(dut):
     await tb.run_maps([tb.random_map(MAX_WIDTH, 5)], "single")
     for _ in range(10):
         await RisingEdge(dut.clk)
+
+
+@cocotb.test()
+async def photo_maps(dut):
+    """FAST output of whole photographs (TB_PHOTOS: JSON list of [path, threshold,
+    score]): records against the golden, and clocks per pixel logged. With
+    TB_MAX_CLOCKS_PER_PIXEL set, each frame is held to it."""
+    from fastnms.fast import fast_maps
+    from fastnms.image import load_grey
+
+    photos = json.loads(os.environ.get("TB_PHOTOS", "[]"))
+    limit = float(os.environ.get("TB_MAX_CLOCKS_PER_PIXEL", "0"))
+    assert photos, "no photographs given in TB_PHOTOS"
+    tb = TB(dut)
+    await tb.reset()
+    for path, threshold, score in photos:
+        img = load_grey(path)[:MAX_HEIGHT, :MAX_WIDTH]
+        corner, scores = fast_maps(img, threshold, score)
+        clocks = await tb.run_maps([(corner, scores.astype(np.int64))], Path(path).name)
+        per_pixel = clocks / img.size
+        dut._log.info(
+            "%s %dx%d t=%d %s: %d clocks, %.4f per pixel (flush pass included)",
+            Path(path).name, img.shape[1], img.shape[0], threshold, score, clocks, per_pixel,
+        )
+        if limit:
+            assert per_pixel <= limit, f"{path}: {per_pixel:.4f} clocks per pixel > {limit}"

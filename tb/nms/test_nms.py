@@ -25,6 +25,7 @@ def test_nms_region(request, connectivity, idle, stall):
         "fastnms_nms_region",
         "region_tb",
         generics,
+        testcase="shapes,random_maps,empty_and_reset,throughput,idle_output",
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
