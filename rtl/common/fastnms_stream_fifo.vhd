@@ -1,6 +1,8 @@
 -- First-word-fall-through FIFO on the project's one RAM entity.
 --
--- in_ready is a flip-flop ('1' while there is room for one more beat); the
+-- in_ready is a flip-flop ('1' while there is room for one more beat), and
+-- so is in_room2 ('1' while there is room for two: a producer with one
+-- register stage after its decision pushes without looking at in_ready); the
 -- head of the queue is presented on out_data with out_valid and leaves on a
 -- clock with out_valid = out_ready = '1'. One beat per clock in and out; a
 -- beat written into an empty FIFO appears on the output two clocks later.
@@ -23,6 +25,7 @@ entity fastnms_stream_fifo is
     rst       : in    std_logic;
     in_valid  : in    std_logic;
     in_ready  : out   std_logic;
+    in_room2  : out   std_logic;
     in_data   : in    std_logic_vector(WIDTH - 1 downto 0);
     out_valid : out   std_logic;
     out_ready : in    std_logic;
@@ -34,11 +37,12 @@ architecture rtl of fastnms_stream_fifo is
 
   constant PTR_BITS : positive := clog2(DEPTH);
 
-  signal wr_ptr    : unsigned(PTR_BITS - 1 downto 0);
-  signal rd_ptr    : unsigned(PTR_BITS - 1 downto 0);
+  signal wr_ptr : unsigned(PTR_BITS - 1 downto 0);
+  signal rd_ptr : unsigned(PTR_BITS - 1 downto 0);
   -- Beats in the RAM (written and not yet read), 0 .. DEPTH.
   signal stored    : unsigned(bits_for(DEPTH) - 1 downto 0);
   signal room      : std_logic;
+  signal room2     : std_logic;
   signal head_full : std_logic;
   signal push      : std_logic;
   signal load      : std_logic;
@@ -49,10 +53,11 @@ begin
     report "fastnms_stream_fifo: DEPTH must be at least 2"
     severity failure;
 
-  push      <= in_valid and room;
+  push <= in_valid and room;
   -- Read the next beat into the output register when it is empty or leaving.
   load      <= to_sl(stored /= 0) and (not head_full or out_ready);
   in_ready  <= room;
+  in_room2  <= room2;
   out_valid <= head_full;
 
   control : process (clk) is
@@ -79,6 +84,7 @@ begin
       end if;
       stored <= next_stored;
       room   <= to_sl(next_stored /= DEPTH);
+      room2  <= to_sl(next_stored < DEPTH - 1);
       if load = '1' then
         head_full <= '1';
       elsif out_ready = '1' then
@@ -89,6 +95,7 @@ begin
         rd_ptr    <= (others => '0');
         stored    <= (others => '0');
         room      <= '0';
+        room2     <= '0';
         head_full <= '0';
       end if;
     end if;

@@ -51,7 +51,7 @@ entity fastnms_core is
     out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
     out_eof       : out   std_logic;
     tap_valid     : out   std_logic;
-    tap_ready     : in    std_logic := '1';
+    tap_ready     : in    std_logic;
     tap_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
     tap_sof       : out   std_logic;
     tap_eol       : out   std_logic;
@@ -70,6 +70,7 @@ architecture rtl of fastnms_core is
     if nms_name = "region4" then
       return 4;
     end if;
+
     return 8;
 
   end function connectivity_of;
@@ -86,9 +87,9 @@ architecture rtl of fastnms_core is
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
   -- The fork between the NMS and the score tap.
-  signal n_valid  : std_logic;
-  signal n_ready  : std_logic;
-  signal t_ready  : std_logic;
+  signal n_valid : std_logic;
+  signal n_ready : std_logic;
+  signal t_ready : std_logic;
 
 begin
 
@@ -127,10 +128,12 @@ begin
       err_frame     => err_frame
     );
 
-  t_ready   <= tap_ready when SCORE_TAP else '1';
+  t_ready   <= tap_ready when SCORE_TAP else
+               '1';
   d_ready   <= n_ready and t_ready;
   n_valid   <= d_valid and t_ready;
-  tap_valid <= d_valid and n_ready when SCORE_TAP else '0';
+  tap_valid <= d_valid and n_ready when SCORE_TAP else
+               '0';
   tap_score <= d_score;
   tap_sof   <= d_sof;
   tap_eol   <= d_eol;

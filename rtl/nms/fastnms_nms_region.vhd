@@ -29,8 +29,8 @@ entity fastnms_nms_region is
     CONNECTIVITY : positive := 8;
     -- Labels (and regions) in the tables, label 0 meaning none: at most
     -- MAX_WIDTH / 2 + 1 runs are in the label line at once.
-    LABELS       : positive := MAX_WIDTH / 2 + 3;
-    EVENT_DEPTH  : positive := 512
+    LABELS      : positive := MAX_WIDTH / 2 + 3;
+    EVENT_DEPTH : positive := 512
   );
   port (
     clk       : in    std_logic;
@@ -59,7 +59,7 @@ architecture rtl of fastnms_nms_region is
   constant X_BITS     : positive := clog2(MAX_WIDTH);
   constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
   -- Event beat: flags, three labels, the run's best pixel.
-  constant EV_BITS    : positive := 6 + 3 * LABEL_BITS + SCORE_BITS + X_BITS + Y_BITS;
+  constant EV_BITS : positive := 6 + 3 * LABEL_BITS + SCORE_BITS + X_BITS + Y_BITS;
 
   subtype label_t is unsigned(LABEL_BITS - 1 downto 0);
 
@@ -69,7 +69,7 @@ architecture rtl of fastnms_nms_region is
 
   -- Scan side of the event queue (s_*) and table side (t_*).
   signal s_valid       : std_logic;
-  signal s_ready       : std_logic;
+  signal s_room        : std_logic;
   signal s_new         : std_logic;
   signal s_union       : std_logic;
   signal s_union_label : label_t;
@@ -116,7 +116,7 @@ begin
       spare_label    => spare_label,
       spare_take     => spare_take,
       ev_valid       => s_valid,
-      ev_ready       => s_ready,
+      ev_room        => s_room,
       ev_new         => s_new,
       ev_union       => s_union,
       ev_union_label => s_union_label,
@@ -145,14 +145,15 @@ begin
       clk       => clk,
       rst       => rst,
       in_valid  => s_valid,
-      in_ready  => s_ready,
+      in_ready  => open,
+      in_room2  => s_room,
       in_data   => s_data,
       out_valid => t_valid,
       out_ready => t_ready,
       out_data  => t_data
     );
 
-  table : block is
+  unpack : block is
 
     -- Field positions in the event beat, from the top.
     constant F_UNION_LABEL : natural := EV_BITS - 7;
@@ -201,6 +202,6 @@ begin
         out_eof        => out_eof
       );
 
-  end block table;
+  end block unpack;
 
 end architecture rtl;

@@ -40,24 +40,25 @@ entity fastnms_nms_region_scan is
     LABEL_BITS   : positive := 10
   );
   port (
-    clk            : in    std_logic;
-    rst            : in    std_logic;
+    clk : in    std_logic;
+    rst : in    std_logic;
     -- Frame width, 1 .. MAX_WIDTH, stable when the start-of-frame pixel is accepted.
-    cfg_width      : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
-    in_valid       : in    std_logic;
-    in_ready       : out   std_logic;
-    in_corner      : in    std_logic;
-    in_score       : in    unsigned(SCORE_BITS - 1 downto 0);
-    in_sof         : in    std_logic;
-    in_eol         : in    std_logic;
-    in_eof         : in    std_logic;
+    cfg_width : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    in_valid  : in    std_logic;
+    in_ready  : out   std_logic;
+    in_corner : in    std_logic;
+    in_score  : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_sof    : in    std_logic;
+    in_eol    : in    std_logic;
+    in_eof    : in    std_logic;
     -- The label a new run takes (from the table's free list).
-    spare_valid    : in    std_logic;
-    spare_label    : in    unsigned(LABEL_BITS - 1 downto 0);
-    spare_take     : out   std_logic;
+    spare_valid : in    std_logic;
+    spare_label : in    unsigned(LABEL_BITS - 1 downto 0);
+    spare_take  : out   std_logic;
     -- One event beat per pixel that has any event.
+    -- ev_room: the queue takes two more beats; ev_valid is then never refused.
     ev_valid       : out   std_logic;
-    ev_ready       : in    std_logic;
+    ev_room        : in    std_logic;
     ev_new         : out   std_logic;
     ev_union       : out   std_logic;
     ev_union_label : out   unsigned(LABEL_BITS - 1 downto 0);
@@ -82,49 +83,56 @@ architecture rtl of fastnms_nms_region_scan is
   constant NONE : label_t := (others => '0');
 
   -- Frame position of the pixel (or flush step) deciding now.
-  signal x           : unsigned(ev_x'range);
-  signal y           : unsigned(ev_y'range);
-  signal first_row   : std_logic;
-  signal first_col   : std_logic;
-  signal width_m1    : unsigned(cfg_width'range);
-  signal flushing    : std_logic;
-  signal flush_last  : std_logic;
+  signal x          : unsigned(ev_x'range);
+  signal y          : unsigned(ev_y'range);
+  signal first_row  : std_logic;
+  signal first_col  : std_logic;
+  signal width_m1   : unsigned(cfg_width'range);
+  signal width_m2   : unsigned(cfg_width'range);
+  signal flushing   : std_logic;
+  signal flush_last : std_logic;
   -- The label line and the labels around the pixel in the row above:
   -- line_a = column x-1, line_b = column x, rd_data = column x+1.
-  signal rd_ptr      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal rd_addr     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal rd_data     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal line_a      : label_t;
-  signal line_b      : label_t;
-  signal wr_data     : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal rd_ptr  : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal rd_addr : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal rd_data : std_logic_vector(LABEL_BITS downto 0);
+  signal line_a  : label_t;
+  signal line_b  : label_t;
+  signal a_on    : std_logic;
+  signal b_on    : std_logic;
+  signal c_lab   : label_t;
+  signal wr_data : std_logic_vector(LABEL_BITS downto 0);
   -- Frames 1 or 2 pixels wide read the column written in the same clock:
   -- that label comes from a register instead (W = 2), or from the pixel
   -- itself (W = 1).
-  signal narrow      : std_logic;
-  signal single      : std_logic;
-  signal last_wr     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal line_c      : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal narrow  : std_logic;
+  signal single  : std_logic;
+  signal last_wr : std_logic_vector(LABEL_BITS downto 0);
+  signal line_c  : std_logic_vector(LABEL_BITS downto 0);
   -- The current run (the pixel to the left, when it is a corner).
-  signal run_on      : std_logic;
-  signal run_label   : label_t;
-  signal run_score   : unsigned(SCORE_BITS - 1 downto 0);
-  signal run_x       : unsigned(ev_x'range);
-  signal run_y       : unsigned(ev_y'range);
-  signal run_credit  : std_logic;
+  signal run_on     : std_logic;
+  signal run_label  : label_t;
+  signal run_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal run_x      : unsigned(ev_x'range);
+  signal run_y      : unsigned(ev_y'range);
+  signal run_credit : std_logic;
   -- This step.
   signal advance     : std_logic;
   signal pixel_ready : std_logic;
   signal corner      : std_logic;
   signal last_col    : std_logic;
   signal above       : std_logic;
-  signal nb_a        : label_t;
-  signal nb_b        : label_t;
-  signal nb_c        : label_t;
+  signal nb_a        : std_logic;
+  signal nb_c        : std_logic;
   signal has_a       : std_logic;
   signal has_b       : std_logic;
   signal has_c       : std_logic;
-  signal has_n       : std_logic;
-  signal first_nb    : label_t;
+  signal eq_cr       : std_logic;
+  signal eq_ca       : std_logic;
+  signal eq_ar       : std_logic;
+  signal eq_br       : std_logic;
+  signal pass_a      : std_logic;
+  signal same_label  : std_logic;
   signal is_new      : std_logic;
   signal lab         : label_t;
   signal union_label : label_t;
@@ -154,87 +162,127 @@ begin
     report "fastnms_nms_region_scan: MAX_WIDTH must be at least 2"
     severity failure;
 
-  -- Pixels are taken while the event queue and a spare label are ready; the
-  -- flush pass steps whenever the event queue is ready.
-  pixel_ready <= ev_ready and spare_valid and not flushing;
+  -- Pixels are taken while the event queue has room for two beats (one may
+  -- sit in the event register) and a spare label is ready; the flush pass
+  -- steps whenever the queue has room.
+  pixel_ready <= ev_room and spare_valid and not flushing;
   in_ready    <= pixel_ready;
-  advance     <= (in_valid and pixel_ready) or (flushing and ev_ready);
+  advance     <= (in_valid and pixel_ready) or (flushing and ev_room);
   corner      <= in_corner and not flushing;
   start       <= in_sof and not flushing;
-  px          <= (others => '0') when start = '1' else x;
-  py          <= (others => '0') when start = '1' else y;
-  last_col    <= flush_last when flushing = '1' else in_eol;
+  px          <= (others => '0') when start = '1' else
+                 x;
+  py          <= (others => '0') when start = '1' else
+                 y;
+  last_col    <= flush_last when flushing = '1' else
+                 in_eol;
 
-  -- The row above exists from the second row on (and for the flush pass).
-  above <= not (first_row or start);
-  nb_a  <= line_a when above = '1' and first_col = '0' and start = '0' else NONE;
-  nb_b  <= line_b when above = '1' else NONE;
-  line_c <= last_wr when narrow = '1' else rd_data;
-  nb_c  <= unsigned(line_c) when above = '1' and last_col = '0' else NONE;
+  -- The labels above: A = column x-1 and B = column x in registers, C =
+  -- column x+1 from the RAM; each with a flag "a corner is there" (the RAM
+  -- word's top bit), so that no label needs comparing with zero.
+  line_c <= last_wr when narrow = '1' else
+            rd_data;
+  above  <= not (first_row or start);
+  -- A pixel is next to a run above: flags masked at the frame's first row
+  -- and at both ends of a row; A and C only under 8-connectivity.
+  nb_a  <= a_on and above and not first_col and not start;
+  has_a <= nb_a and to_sl(EIGHT);
+  has_b <= b_on and above;
+  nb_c  <= line_c(LABEL_BITS) and above and not last_col;
+  has_c <= nb_c and to_sl(EIGHT);
+  c_lab <= unsigned(line_c(LABEL_BITS - 1 downto 0));
 
-  -- Decision for the pixel: its label, union, pass and end events.
-  has_a <= (or nb_a) and to_sl(EIGHT);
-  has_b <= or nb_b;
-  has_c <= (or nb_c) and to_sl(EIGHT);
-  has_n <= or nb_c;
+  eq_cr <= to_sl(c_lab = run_label);
+  eq_ca <= to_sl(c_lab = line_a);
+  eq_ar <= to_sl(line_a = run_label);
+  eq_br <= to_sl(line_b = run_label);
 
-  first_nb <= nb_a when has_a = '1' else
-              nb_b when has_b = '1' else
-              nb_c when has_c = '1' else
-              NONE;
+  -- The pixel's label: the run's, else the first run above it touches, else a new one.
+  is_new <= corner and not run_on and not (has_a or has_b or has_c);
+  lab    <= run_label when run_on = '1' else
+            line_a when has_a = '1' else
+            line_b when has_b = '1' else
+            c_lab when has_c = '1' else
+            spare_label;
 
-  -- A run touches a run of the row above first when that run enters the
-  -- neighbourhood: C under 8-connectivity (B empty), B under 4 (A empty);
-  -- a run starting beside two runs above (A and C, B empty) touches both.
-  union_label <= nb_c when EIGHT and has_b = '0' and (run_on = '1' or has_a = '1') else
-                 nb_b when not EIGHT and run_on = '1' and (or nb_a) = '0' else
-                 NONE;
+  connectivity_8 : if EIGHT generate
+    -- A run first touches a run above when C enters with B empty; a run
+    -- starting beside two runs above (A and C, B empty) touches both. Runs
+    -- above left behind: the one ending at column x-1 (A, B empty), and at
+    -- the end of a row the one ending there (B).
+    do_union    <= corner and has_c and not has_b and
+                   ((run_on and not eq_cr) or (not run_on and has_a and not eq_ca));
+    union_label <= c_lab;
+    pass_a      <= has_a and not has_b;
+    pass_raw    <= pass_a or (has_b and last_col);
+    pass_label  <= line_a when pass_a = '1' else
+                   line_b;
+    -- pass label = the run's label (when not running, the pixel took the
+    -- passing run's label).
+    same_label <= not run_on or (eq_ar and pass_a) or (eq_br and not pass_a);
+  end generate connectivity_8;
 
-  -- The run of the row above left behind: the one ending at column x-1
-  -- (8-connectivity) or x (4), and at the end of a row the one ending there.
-  pass_label <= nb_a when EIGHT and has_b = '0' else
-                nb_b when EIGHT and last_col = '1' else
-                nb_b when not EIGHT and (has_n = '0' or last_col = '1') else
-                NONE;
+  connectivity_4 : if not EIGHT generate
+    -- A run first touches a run above when B enters with A empty; the run
+    -- above left behind is B's when C is empty or the row ends.
+    do_union    <= corner and run_on and has_b and not nb_a and not eq_br;
+    union_label <= line_b;
+    pass_a      <= '0';
+    pass_raw    <= has_b and (not nb_c or last_col);
+    pass_label  <= line_b;
+    same_label  <= not run_on or eq_br;
+  end generate connectivity_4;
 
-  is_new     <= corner and not run_on and not (has_a or has_b or has_c);
-  lab        <= run_label when run_on = '1' else
-                first_nb when (has_a or has_b or has_c) = '1' else
-                spare_label;
-  do_union   <= corner and (or union_label) and to_sl(union_label /= lab);
-  pass_raw   <= or pass_label;
-  credit_in  <= run_credit when run_on = '1' else is_new;
+  credit_in <= run_credit when run_on = '1' else
+               is_new;
   -- The run's own label passing above while the run goes on: the run takes
   -- over that count.
-  suppress   <= pass_raw and corner and not credit_in and to_sl(pass_label = lab);
+  suppress   <= pass_raw and corner and not credit_in and same_label;
   do_pass    <= pass_raw and not suppress;
   credit_now <= credit_in or suppress;
 
   -- Best pixel of the run: the larger score, the first in raster order on a tie.
   better     <= not run_on or greater(in_score, run_score);
-  best_score <= in_score when corner = '1' and better = '1' else run_score;
-  best_x     <= px when corner = '1' and better = '1' else run_x;
-  best_y     <= py when corner = '1' and better = '1' else run_y;
+  best_score <= in_score when corner = '1' and better = '1' else
+                run_score;
+  best_x     <= px when corner = '1' and better = '1' else
+                run_x;
+  best_y     <= py when corner = '1' and better = '1' else
+                run_y;
 
   do_end <= (run_on and not corner) or (corner and last_col);
   do_eof <= flushing and flush_last;
 
-  ev_valid       <= advance and (is_new or do_union or do_end or do_pass or do_eof);
-  ev_new         <= is_new;
-  ev_union       <= do_union;
-  ev_union_label <= union_label;
-  ev_end         <= do_end;
-  ev_credit      <= credit_now when corner = '1' else run_credit;
-  ev_pass        <= do_pass;
-  ev_pass_label  <= pass_label;
-  ev_label       <= lab;
-  ev_score       <= best_score;
-  ev_x           <= best_x;
-  ev_y           <= best_y;
-  ev_eof         <= do_eof;
-  spare_take     <= advance and is_new;
+  spare_take <= advance and is_new;
+  wr_data    <= corner & std_logic_vector(lab) when corner = '1' else
+                (others => '0');
 
-  wr_data <= std_logic_vector(lab) when corner = '1' else (others => '0');
+  -- One register between the decision and the event queue.
+  event_register : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      ev_valid <= advance and (is_new or do_union or do_end or do_pass or do_eof);
+      if advance = '1' then
+        ev_new         <= is_new;
+        ev_union       <= do_union;
+        ev_union_label <= union_label;
+        ev_end         <= do_end;
+        ev_credit      <= credit_now when corner = '1' else run_credit;
+        ev_pass        <= do_pass;
+        ev_pass_label  <= pass_label;
+        ev_label       <= lab;
+        ev_score       <= best_score;
+        ev_x           <= best_x;
+        ev_y           <= best_y;
+        ev_eof         <= do_eof;
+      end if;
+      if rst = '1' then
+        ev_valid <= '0';
+      end if;
+    end if;
+
+  end process event_register;
 
   -- Read column x+2 while column x decides: it is column x+1 of the next step.
   -- At the start of a frame: column 2 mod W.
@@ -248,14 +296,18 @@ begin
     if rising_edge(clk) then
       if advance = '1' then
         line_a <= line_b;
-        line_b <= unsigned(line_c);
+        a_on   <= b_on;
+        line_b <= unsigned(line_c(LABEL_BITS - 1 downto 0));
+        b_on   <= line_c(LABEL_BITS);
         if single = '1' or (start = '1' and cfg_width = 1) then
-          line_b <= unsigned(wr_data);
+          line_b <= unsigned(wr_data(LABEL_BITS - 1 downto 0));
+          b_on   <= wr_data(LABEL_BITS);
         end if;
         last_wr <= wr_data;
 
         if start = '1' then
           width_m1 <= cfg_width - 1;
+          width_m2 <= cfg_width - 2;
           narrow   <= to_sl(cfg_width <= 2);
           single   <= to_sl(cfg_width = 1);
           -- Column 3 mod W.
@@ -283,17 +335,23 @@ begin
         if start = '1' then
           first_row <= '1';
         end if;
+        -- Counters: the increments start from the registers (short paths).
         if last_col = '1' then
           x <= (others => '0');
           if flushing = '0' then
-            y         <= py + 1;
+            y         <= y + 1;
             first_row <= '0';
+            if start = '1' then
+              y <= to_unsigned(1, y'length);
+            end if;
           end if;
+        elsif start = '1' then
+          x <= to_unsigned(1, x'length);
+          y <= (others => '0');
         else
-          x <= px + 1;
-          y <= py;
+          x <= x + 1;
         end if;
-        flush_last <= to_sl(x + 1 = width_m1) and flushing;
+        flush_last <= to_sl(x = width_m2) and flushing;
 
         if flushing = '1' and flush_last = '1' then
           flushing <= '0';
@@ -325,7 +383,7 @@ begin
   label_line : entity work.fastnms_ram_sdp
     generic map (
       DEPTH        => MAX_WIDTH,
-      WIDTH        => LABEL_BITS,
+      WIDTH        => LABEL_BITS + 1,
       READ_LATENCY => 1
     )
     port map (

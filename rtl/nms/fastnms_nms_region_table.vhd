@@ -75,13 +75,14 @@ architecture rtl of fastnms_nms_region_table is
   constant KEY_BITS : positive := SCORE_BITS + Y_BITS + X_BITS;
 
   subtype label_t is unsigned(LABEL_BITS - 1 downto 0);
+
   subtype key_t is unsigned(KEY_BITS - 1 downto 0);
 
   constant NONE : label_t := (others => '0');
 
   type state_t is (
-    FETCH, NEW_RUN, UNION_A, UNION_B, UNION_CMP, UNION_READ_B, UNION_LINK, WALK, WALK_NEXT,
-    END_READ, END_COUNT, END_BEST, PASS_READ, PASS_COUNT, PASS_EMIT, EOF_EMIT
+    fetch, new_run, union_a, union_b, union_cmp, union_read_b, union_link, walk, walk_next,
+    end_read, end_count, end_best, pass_read, pass_count, pass_emit, eof_emit
   );
 
   -- The steps of an event beat, in order.
@@ -91,47 +92,47 @@ architecture rtl of fastnms_nms_region_table is
   constant STEP_PASS  : natural := 3;
   constant STEP_EOF   : natural := 4;
 
-  signal state        : state_t;
+  signal state : state_t;
   -- Label RAMs: one read address for all fields.
-  signal lab_rd_addr  : label_t;
-  signal lab_region   : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal lab_runs     : std_logic_vector(RUN_BITS - 1 downto 0);
-  signal lab_next     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal lab_prev     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal region_we    : std_logic;
-  signal region_addr  : label_t;
-  signal region_data  : label_t;
-  signal runs_we      : std_logic;
-  signal runs_addr    : label_t;
-  signal runs_data    : unsigned(RUN_BITS - 1 downto 0);
-  signal next_we      : std_logic;
-  signal next_addr    : label_t;
-  signal next_data    : label_t;
-  signal prev_we      : std_logic;
-  signal prev_addr    : label_t;
-  signal prev_data    : label_t;
+  signal lab_rd_addr : label_t;
+  signal lab_region  : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_runs    : std_logic_vector(RUN_BITS - 1 downto 0);
+  signal lab_next    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_prev    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal region_we   : std_logic;
+  signal region_addr : label_t;
+  signal region_data : label_t;
+  signal runs_we     : std_logic;
+  signal runs_addr   : label_t;
+  signal runs_data   : unsigned(RUN_BITS - 1 downto 0);
+  signal next_we     : std_logic;
+  signal next_addr   : label_t;
+  signal next_data   : label_t;
+  signal prev_we     : std_logic;
+  signal prev_addr   : label_t;
+  signal prev_data   : label_t;
   -- Region RAMs: one read address for all fields.
-  signal reg_rd_addr  : label_t;
-  signal reg_best     : std_logic_vector(KEY_BITS - 1 downto 0);
-  signal reg_head     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal reg_tail     : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal best_we      : std_logic;
-  signal best_addr    : label_t;
-  signal best_data    : key_t;
-  signal head_we      : std_logic;
-  signal head_addr    : label_t;
-  signal head_data    : label_t;
-  signal tail_we      : std_logic;
-  signal tail_addr    : label_t;
-  signal tail_data    : label_t;
+  signal reg_rd_addr : label_t;
+  signal reg_best    : std_logic_vector(KEY_BITS - 1 downto 0);
+  signal reg_head    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_tail    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal best_we     : std_logic;
+  signal best_addr   : label_t;
+  signal best_data   : key_t;
+  signal head_we     : std_logic;
+  signal head_addr   : label_t;
+  signal head_data   : label_t;
+  signal tail_we     : std_logic;
+  signal tail_addr   : label_t;
+  signal tail_data   : label_t;
   -- Working registers.
-  signal region_a     : label_t;
-  signal region_b     : label_t;
-  signal best_a       : key_t;
-  signal tail_a       : label_t;
-  signal cursor       : label_t;
-  signal event_key    : key_t;
-  signal finish       : std_logic;
+  signal region_a  : label_t;
+  signal region_b  : label_t;
+  signal best_a    : key_t;
+  signal tail_a    : label_t;
+  signal cursor    : label_t;
+  signal event_key : key_t;
+  signal finish    : std_logic;
   -- Free lists and the spare label / region.
   signal lab_fresh    : unsigned(LABEL_BITS downto 0);
   signal lab_free_in  : std_logic;
@@ -150,11 +151,11 @@ architecture rtl of fastnms_nms_region_table is
   signal new_ok       : std_logic;
   signal take_region  : std_logic;
   -- Output.
-  signal emit         : std_logic;
-  signal emit_ready   : std_logic;
-  signal emit_data    : std_logic_vector(KEY_BITS downto 0);
-  signal out_data     : std_logic_vector(KEY_BITS downto 0);
-  signal out_key      : key_t;
+  signal emit       : std_logic;
+  signal emit_ready : std_logic;
+  signal emit_data  : std_logic_vector(KEY_BITS downto 0);
+  signal out_data   : std_logic_vector(KEY_BITS downto 0);
+  signal out_key    : key_t;
 
   function larger (a : key_t; b : key_t) return key_t is
   begin
@@ -162,6 +163,7 @@ architecture rtl of fastnms_nms_region_table is
     if a > b then
       return a;
     end if;
+
     return b;
 
   end function larger;
@@ -182,6 +184,7 @@ architecture rtl of fastnms_nms_region_table is
     elsif f_eof = '1' then
       return EOF_EMIT;
     end if;
+
     return FETCH;
 
   end function first_step;
@@ -199,89 +202,70 @@ begin
   begin
 
     if rising_edge(clk) then
-
-      case state is
-
-        when FETCH =>
-          if ev_valid = '1' then
-            state <= first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          end if;
-
-        when NEW_RUN =>
-          if new_ok = '1' then
-            state <= first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          end if;
-
-        when UNION_A =>
-          state <= UNION_B;
-
-        when UNION_B =>
-          region_a <= unsigned(lab_region);
-          state    <= UNION_CMP;
-
-        when UNION_CMP =>
-          region_b <= unsigned(lab_region);
-          if unsigned(lab_region) = region_a then
-            state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          else
-            state <= UNION_READ_B;
-          end if;
-
-        when UNION_READ_B =>
-          best_a <= unsigned(reg_best);
-          tail_a <= unsigned(reg_tail);
-          state  <= UNION_LINK;
-
-        when UNION_LINK =>
-          cursor <= unsigned(reg_head);
-          state  <= WALK;
-
-        when WALK =>
-          state <= WALK_NEXT;
-
-        when WALK_NEXT =>
-          cursor <= unsigned(lab_next);
-          if unsigned(lab_next) = NONE then
-            state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          else
-            state <= WALK;
-          end if;
-
-        when END_READ =>
-          state <= END_COUNT;
-
-        when END_COUNT =>
-          region_a <= unsigned(lab_region);
-          state    <= END_BEST;
-
-        when END_BEST =>
-          state <= first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-
-        when PASS_READ =>
-          state <= PASS_COUNT;
-
-        when PASS_COUNT =>
-          region_a <= unsigned(lab_region);
-          if unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and unsigned(lab_next) = NONE then
-            state <= PASS_EMIT;
-          else
-            state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          end if;
-
-        when PASS_EMIT =>
-          if emit_ready = '1' then
-            state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
-          end if;
-
-        when EOF_EMIT =>
-          if emit_ready = '1' then
-            state <= FETCH;
-          end if;
-
-      end case;
+      if state = fetch then
+        if ev_valid = '1' then
+          state <= first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        end if;
+      elsif state = new_run then
+        if new_ok = '1' then
+          state <= first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        end if;
+      elsif state = union_a then
+        state <= union_b;
+      elsif state = union_b then
+        region_a <= unsigned(lab_region);
+        state    <= union_cmp;
+      elsif state = union_cmp then
+        region_b <= unsigned(lab_region);
+        if unsigned(lab_region) = region_a then
+          state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        else
+          state <= union_read_b;
+        end if;
+      elsif state = union_read_b then
+        best_a <= unsigned(reg_best);
+        tail_a <= unsigned(reg_tail);
+        state  <= union_link;
+      elsif state = union_link then
+        cursor <= unsigned(reg_head);
+        state  <= walk;
+      elsif state = walk then
+        state <= walk_next;
+      elsif state = walk_next then
+        cursor <= unsigned(lab_next);
+        if unsigned(lab_next) = NONE then
+          state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        else
+          state <= walk;
+        end if;
+      elsif state = end_read then
+        state <= end_count;
+      elsif state = end_count then
+        region_a <= unsigned(lab_region);
+        state    <= end_best;
+      elsif state = end_best then
+        state <= first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+      elsif state = pass_read then
+        state <= pass_count;
+      elsif state = pass_count then
+        region_a <= unsigned(lab_region);
+        if unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and unsigned(lab_next) = NONE then
+          state <= pass_emit;
+        else
+          state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        end if;
+      elsif state = pass_emit then
+        if emit_ready = '1' then
+          state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        end if;
+      elsif state = eof_emit then
+        if emit_ready = '1' then
+          state <= fetch;
+        end if;
+      end if;
 
       if rst = '1' then
-        state <= FETCH;
+        state <= fetch;
       end if;
     end if;
 
@@ -293,37 +277,25 @@ begin
 
     finish <= '0';
 
-    case state is
-
-      when NEW_RUN =>
-        finish <= new_ok and to_sl(first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when UNION_CMP =>
-        finish <= to_sl(unsigned(lab_region) = region_a and
-                        first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when WALK_NEXT =>
-        finish <= to_sl(unsigned(lab_next) = NONE and
-                        first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when END_BEST =>
-        finish <= to_sl(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when PASS_COUNT =>
-        finish <= to_sl(not (unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and
-                             unsigned(lab_next) = NONE) and
-                        first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when PASS_EMIT =>
-        finish <= emit_ready and to_sl(first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = FETCH);
-
-      when EOF_EMIT =>
-        finish <= emit_ready;
-
-      when others =>
-        null;
-
-    end case;
+    if state = new_run then
+      finish <= new_ok and to_sl(first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = union_cmp then
+      finish <= to_sl(unsigned(lab_region) = region_a and
+                      first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = walk_next then
+      finish <= to_sl(unsigned(lab_next) = NONE and
+                      first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = end_best then
+      finish <= to_sl(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = pass_count then
+      finish <= to_sl(not (unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and
+                           unsigned(lab_next) = NONE) and
+                      first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = pass_emit then
+      finish <= emit_ready and to_sl(first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
+    elsif state = eof_emit then
+      finish <= emit_ready;
+    end if;
 
   end process finish_step;
 
@@ -363,115 +335,97 @@ begin
     emit         <= '0';
     emit_data    <= '0' & reg_best;
 
-    case state is
-
-      when NEW_RUN =>
-        -- One run, a fresh region whose list is the label alone.
-        region_we   <= new_ok;
-        runs_we     <= new_ok;
-        next_we     <= new_ok;
-        prev_we     <= new_ok;
-        best_we     <= new_ok;
-        head_we     <= new_ok;
-        tail_we     <= new_ok;
-        take_region <= new_ok;
-
-      when UNION_A =>
-        lab_rd_addr <= ev_label;
-
-      when UNION_B =>
-        lab_rd_addr <= ev_union_label;
-
-      when UNION_CMP =>
-        reg_rd_addr <= region_a;
-
-      when UNION_READ_B =>
-        reg_rd_addr <= region_b;
-
-      when UNION_LINK =>
-        -- Region b's list goes after region a's; a keeps the better maximum.
-        best_we     <= '1';
-        best_addr   <= region_a;
-        best_data   <= larger(best_a, unsigned(reg_best));
-        tail_we     <= '1';
-        tail_addr   <= region_a;
-        tail_data   <= unsigned(reg_tail);
-        next_we     <= '1';
-        next_addr   <= tail_a;
-        next_data   <= unsigned(reg_head);
-        prev_we     <= '1';
-        prev_addr   <= unsigned(reg_head);
-        prev_data   <= tail_a;
-        reg_free_in <= '1';
-
-      when WALK =>
-        region_we   <= '1';
-        region_addr <= cursor;
-        region_data <= region_a;
-        lab_rd_addr <= cursor;
-
-      when END_READ =>
-        lab_rd_addr <= ev_label;
-
-      when END_COUNT =>
-        runs_we     <= not ev_credit;
-        runs_data   <= unsigned(lab_runs) + 1;
-        reg_rd_addr <= unsigned(lab_region);
-
-      when END_BEST =>
-        best_we   <= '1';
-        best_addr <= region_a;
-        best_data <= larger(unsigned(reg_best), event_key);
-
-      when PASS_READ =>
-        lab_rd_addr <= ev_pass_label;
-
-      when PASS_COUNT =>
-        runs_addr   <= ev_pass_label;
-        runs_data   <= unsigned(lab_runs) - 1;
-        reg_rd_addr <= unsigned(lab_region);
-        if unsigned(lab_runs) /= 1 then
-          runs_we <= '1';
-        else
-          -- The label leaves its region's list and is free again.
-          lab_free_in <= '1';
-          next_addr   <= unsigned(lab_prev);
-          next_data   <= unsigned(lab_next);
-          next_we     <= to_sl(unsigned(lab_prev) /= NONE);
-          head_addr   <= unsigned(lab_region);
-          head_data   <= unsigned(lab_next);
-          head_we     <= to_sl(unsigned(lab_prev) = NONE);
-          prev_addr   <= unsigned(lab_next);
-          prev_data   <= unsigned(lab_prev);
-          prev_we     <= to_sl(unsigned(lab_next) /= NONE);
-          tail_addr   <= unsigned(lab_region);
-          tail_data   <= unsigned(lab_prev);
-          tail_we     <= to_sl(unsigned(lab_next) = NONE);
-        end if;
-
-      when PASS_EMIT =>
-        -- The list is empty: the region is closed.
-        reg_rd_addr  <= region_a;
-        emit         <= '1';
-        reg_free_in  <= emit_ready;
-        reg_free_lab <= region_a;
-
-      when EOF_EMIT =>
-        emit      <= '1';
-        emit_data           <= (others => '0');
-        emit_data(KEY_BITS) <= '1';
-
-      when others =>
-        null;
-
-    end case;
+    if state = new_run then
+      -- One run, a fresh region whose list is the label alone.
+      region_we   <= new_ok;
+      runs_we     <= new_ok;
+      next_we     <= new_ok;
+      prev_we     <= new_ok;
+      best_we     <= new_ok;
+      head_we     <= new_ok;
+      tail_we     <= new_ok;
+      take_region <= new_ok;
+    elsif state = union_a then
+      lab_rd_addr <= ev_label;
+    elsif state = union_b then
+      lab_rd_addr <= ev_union_label;
+    elsif state = union_cmp then
+      reg_rd_addr <= region_a;
+    elsif state = union_read_b then
+      reg_rd_addr <= region_b;
+    elsif state = union_link then
+      -- Region b's list goes after region a's; a keeps the better maximum.
+      best_we     <= '1';
+      best_addr   <= region_a;
+      best_data   <= larger(best_a, unsigned(reg_best));
+      tail_we     <= '1';
+      tail_addr   <= region_a;
+      tail_data   <= unsigned(reg_tail);
+      next_we     <= '1';
+      next_addr   <= tail_a;
+      next_data   <= unsigned(reg_head);
+      prev_we     <= '1';
+      prev_addr   <= unsigned(reg_head);
+      prev_data   <= tail_a;
+      reg_free_in <= '1';
+    elsif state = walk then
+      region_we   <= '1';
+      region_addr <= cursor;
+      region_data <= region_a;
+      lab_rd_addr <= cursor;
+    elsif state = end_read then
+      lab_rd_addr <= ev_label;
+    elsif state = end_count then
+      runs_we     <= not ev_credit;
+      runs_data   <= unsigned(lab_runs) + 1;
+      reg_rd_addr <= unsigned(lab_region);
+    elsif state = end_best then
+      best_we   <= '1';
+      best_addr <= region_a;
+      best_data <= larger(unsigned(reg_best), event_key);
+    elsif state = pass_read then
+      lab_rd_addr <= ev_pass_label;
+    elsif state = pass_count then
+      runs_addr   <= ev_pass_label;
+      runs_data   <= unsigned(lab_runs) - 1;
+      reg_rd_addr <= unsigned(lab_region);
+      if unsigned(lab_runs) /= 1 then
+        runs_we <= '1';
+      else
+        -- The label leaves its region's list and is free again.
+        lab_free_in <= '1';
+        next_addr   <= unsigned(lab_prev);
+        next_data   <= unsigned(lab_next);
+        next_we     <= to_sl(unsigned(lab_prev) /= NONE);
+        head_addr   <= unsigned(lab_region);
+        head_data   <= unsigned(lab_next);
+        head_we     <= to_sl(unsigned(lab_prev) = NONE);
+        prev_addr   <= unsigned(lab_next);
+        prev_data   <= unsigned(lab_prev);
+        prev_we     <= to_sl(unsigned(lab_next) /= NONE);
+        tail_addr   <= unsigned(lab_region);
+        tail_data   <= unsigned(lab_prev);
+        tail_we     <= to_sl(unsigned(lab_next) = NONE);
+      end if;
+    elsif state = pass_emit then
+      -- The list is empty: the region is closed.
+      reg_rd_addr  <= region_a;
+      emit         <= '1';
+      reg_free_in  <= emit_ready;
+      reg_free_lab <= region_a;
+    elsif state = eof_emit then
+      emit                <= '1';
+      emit_data           <= (others => '0');
+      emit_data(KEY_BITS) <= '1';
+    end if;
 
   end process ports;
 
   -- ---- spare label and region ----------------------------------------------
   lab_free_pop <= lab_free_ok and (not spare_ok or spare_take) and to_sl(lab_fresh = LABELS);
   reg_free_pop <= reg_free_ok and take_region and to_sl(reg_fresh = LABELS);
-  new_region   <= reg_fresh(LABEL_BITS - 1 downto 0) when reg_fresh /= LABELS else unsigned(reg_free_out);
+  new_region   <= reg_fresh(LABEL_BITS - 1 downto 0) when reg_fresh /= LABELS else
+                  unsigned(reg_free_out);
   new_ok       <= to_sl(reg_fresh /= LABELS) or reg_free_ok;
   spare_valid  <= spare_ok;
   spare_label  <= spare;
@@ -512,6 +466,7 @@ begin
       rst       => rst,
       in_valid  => lab_free_in,
       in_ready  => open,
+      in_room2  => open,
       in_data   => std_logic_vector(ev_pass_label),
       out_valid => lab_free_ok,
       out_ready => lab_free_pop,
@@ -528,6 +483,7 @@ begin
       rst       => rst,
       in_valid  => reg_free_in,
       in_ready  => open,
+      in_room2  => open,
       in_data   => std_logic_vector(reg_free_lab),
       out_valid => reg_free_ok,
       out_ready => reg_free_pop,
@@ -536,56 +492,105 @@ begin
 
   -- ---- the tables ------------------------------------------------------------
   label_region : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => LABEL_BITS
+    )
     port map (
-      clk => clk, wr_en => region_we, wr_addr => region_addr, wr_data => std_logic_vector(region_data),
-      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_region
+      clk     => clk,
+      wr_en   => region_we,
+      wr_addr => region_addr,
+      wr_data => std_logic_vector(region_data),
+      rd_en   => '1',
+      rd_addr => lab_rd_addr,
+      rd_data => lab_region
     );
 
   label_runs : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => RUN_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => RUN_BITS
+    )
     port map (
-      clk => clk, wr_en => runs_we, wr_addr => runs_addr, wr_data => std_logic_vector(runs_data),
-      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_runs
+      clk     => clk,
+      wr_en   => runs_we,
+      wr_addr => runs_addr,
+      wr_data => std_logic_vector(runs_data),
+      rd_en   => '1',
+      rd_addr => lab_rd_addr,
+      rd_data => lab_runs
     );
 
   label_next : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => LABEL_BITS
+    )
     port map (
-      clk => clk, wr_en => next_we, wr_addr => next_addr, wr_data => std_logic_vector(next_data),
-      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_next
+      clk     => clk,
+      wr_en   => next_we,
+      wr_addr => next_addr,
+      wr_data => std_logic_vector(next_data),
+      rd_en   => '1',
+      rd_addr => lab_rd_addr,
+      rd_data => lab_next
     );
 
   label_prev : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => LABEL_BITS
+    )
     port map (
-      clk => clk, wr_en => prev_we, wr_addr => prev_addr, wr_data => std_logic_vector(prev_data),
-      rd_en => '1', rd_addr => lab_rd_addr, rd_data => lab_prev
+      clk     => clk,
+      wr_en   => prev_we,
+      wr_addr => prev_addr,
+      wr_data => std_logic_vector(prev_data),
+      rd_en   => '1',
+      rd_addr => lab_rd_addr,
+      rd_data => lab_prev
     );
 
   region_best : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => KEY_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => KEY_BITS
+    )
     port map (
-      clk => clk, wr_en => best_we, wr_addr => best_addr, wr_data => std_logic_vector(best_data),
-      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_best
+      clk     => clk,
+      wr_en   => best_we,
+      wr_addr => best_addr,
+      wr_data => std_logic_vector(best_data),
+      rd_en   => '1',
+      rd_addr => reg_rd_addr,
+      rd_data => reg_best
     );
 
   region_head : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => LABEL_BITS
+    )
     port map (
-      clk => clk, wr_en => head_we, wr_addr => head_addr, wr_data => std_logic_vector(head_data),
-      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_head
+      clk     => clk,
+      wr_en   => head_we,
+      wr_addr => head_addr,
+      wr_data => std_logic_vector(head_data),
+      rd_en   => '1',
+      rd_addr => reg_rd_addr,
+      rd_data => reg_head
     );
 
   region_tail : entity work.fastnms_ram_sdp
-    generic map (DEPTH => LABELS, WIDTH => LABEL_BITS)
+    generic map (
+      DEPTH => LABELS, WIDTH => LABEL_BITS
+    )
     port map (
-      clk => clk, wr_en => tail_we, wr_addr => tail_addr, wr_data => std_logic_vector(tail_data),
-      rd_en => '1', rd_addr => reg_rd_addr, rd_data => reg_tail
+      clk     => clk,
+      wr_en   => tail_we,
+      wr_addr => tail_addr,
+      wr_data => std_logic_vector(tail_data),
+      rd_en   => '1',
+      rd_addr => reg_rd_addr,
+      rd_data => reg_tail
     );
 
   -- ---- output ------------------------------------------------------------------
-  output : entity work.fastnms_skid_buffer
+  record_out : entity work.fastnms_skid_buffer
     generic map (
       WIDTH => KEY_BITS + 1
     )
