@@ -33,106 +33,144 @@ entity fastnms_axi is
     CORNER_FIFO_DEPTH : positive := 512
   );
   port (
-    aclk                  : in    std_logic;
-    aresetn               : in    std_logic;
+    aclk    : in    std_logic;
+    aresetn : in    std_logic;
     -- video in (AXI4-Stream video, UG934: tuser = start of frame, tlast = end of line)
-    s_axis_video_tdata    : in    std_logic_vector(7 downto 0);
-    s_axis_video_tuser    : in    std_logic;
-    s_axis_video_tlast    : in    std_logic;
-    s_axis_video_tvalid   : in    std_logic;
-    s_axis_video_tready   : out   std_logic;
+    s_axis_video_tdata  : in    std_logic_vector(7 downto 0);
+    s_axis_video_tuser  : in    std_logic;
+    s_axis_video_tlast  : in    std_logic;
+    s_axis_video_tvalid : in    std_logic;
+    s_axis_video_tready : out   std_logic;
     -- corner records (tlast on the last record of each frame)
     m_axis_corners_tdata  : out   std_logic_vector(63 downto 0);
     m_axis_corners_tlast  : out   std_logic;
     m_axis_corners_tvalid : out   std_logic;
     m_axis_corners_tready : in    std_logic;
     -- per-pixel score video (SCORE_VIDEO only)
-    m_axis_score_tdata    : out   std_logic_vector(7 downto 0);
-    m_axis_score_tuser    : out   std_logic;
-    m_axis_score_tlast    : out   std_logic;
-    m_axis_score_tvalid   : out   std_logic;
-    m_axis_score_tready   : in    std_logic;
+    m_axis_score_tdata  : out   std_logic_vector(7 downto 0);
+    m_axis_score_tuser  : out   std_logic;
+    m_axis_score_tlast  : out   std_logic;
+    m_axis_score_tvalid : out   std_logic;
+    m_axis_score_tready : in    std_logic;
     -- control (AXI4-Lite)
-    s_axi_ctrl_awaddr     : in    std_logic_vector(7 downto 0);
-    s_axi_ctrl_awprot     : in    std_logic_vector(2 downto 0);
-    s_axi_ctrl_awvalid    : in    std_logic;
-    s_axi_ctrl_awready    : out   std_logic;
-    s_axi_ctrl_wdata      : in    std_logic_vector(31 downto 0);
-    s_axi_ctrl_wstrb      : in    std_logic_vector(3 downto 0);
-    s_axi_ctrl_wvalid     : in    std_logic;
-    s_axi_ctrl_wready     : out   std_logic;
-    s_axi_ctrl_bresp      : out   std_logic_vector(1 downto 0);
-    s_axi_ctrl_bvalid     : out   std_logic;
-    s_axi_ctrl_bready     : in    std_logic;
-    s_axi_ctrl_araddr     : in    std_logic_vector(7 downto 0);
-    s_axi_ctrl_arprot     : in    std_logic_vector(2 downto 0);
-    s_axi_ctrl_arvalid    : in    std_logic;
-    s_axi_ctrl_arready    : out   std_logic;
-    s_axi_ctrl_rdata      : out   std_logic_vector(31 downto 0);
-    s_axi_ctrl_rresp      : out   std_logic_vector(1 downto 0);
-    s_axi_ctrl_rvalid     : out   std_logic;
-    s_axi_ctrl_rready     : in    std_logic;
-    interrupt             : out   std_logic
+    s_axi_ctrl_awaddr  : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_awprot  : in    std_logic_vector(2 downto 0);
+    s_axi_ctrl_awvalid : in    std_logic;
+    s_axi_ctrl_awready : out   std_logic;
+    s_axi_ctrl_wdata   : in    std_logic_vector(31 downto 0);
+    s_axi_ctrl_wstrb   : in    std_logic_vector(3 downto 0);
+    s_axi_ctrl_wvalid  : in    std_logic;
+    s_axi_ctrl_wready  : out   std_logic;
+    s_axi_ctrl_bresp   : out   std_logic_vector(1 downto 0);
+    s_axi_ctrl_bvalid  : out   std_logic;
+    s_axi_ctrl_bready  : in    std_logic;
+    s_axi_ctrl_araddr  : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_arprot  : in    std_logic_vector(2 downto 0);
+    s_axi_ctrl_arvalid : in    std_logic;
+    s_axi_ctrl_arready : out   std_logic;
+    s_axi_ctrl_rdata   : out   std_logic_vector(31 downto 0);
+    s_axi_ctrl_rresp   : out   std_logic_vector(1 downto 0);
+    s_axi_ctrl_rvalid  : out   std_logic;
+    s_axi_ctrl_rready  : in    std_logic;
+    interrupt          : out   std_logic
   );
 
   attribute x_interface_info      : string;
   attribute x_interface_parameter : string;
 
-  attribute x_interface_info of aclk                      : signal is "xilinx.com:signal:clock:1.0 aclk CLK";
-  attribute x_interface_parameter of aclk                 : signal is
+  attribute x_interface_info of aclk : signal is
+    "xilinx.com:signal:clock:1.0 aclk CLK";
+  attribute x_interface_parameter of aclk : signal is
     "XIL_INTERFACENAME aclk, ASSOCIATED_BUSIF s_axis_video:m_axis_corners:m_axis_score:s_axi_ctrl, " &
     "ASSOCIATED_RESET aresetn";
-  attribute x_interface_info of aresetn                   : signal is "xilinx.com:signal:reset:1.0 aresetn RST";
-  attribute x_interface_parameter of aresetn              : signal is "XIL_INTERFACENAME aresetn, POLARITY ACTIVE_LOW";
-  attribute x_interface_info of interrupt                 : signal is "xilinx.com:signal:interrupt:1.0 interrupt INTERRUPT";
-  attribute x_interface_parameter of interrupt            : signal is "XIL_INTERFACENAME interrupt, SENSITIVITY LEVEL_HIGH";
+  attribute x_interface_info of aresetn : signal is
+    "xilinx.com:signal:reset:1.0 aresetn RST";
+  attribute x_interface_parameter of aresetn : signal is
+    "XIL_INTERFACENAME aresetn, POLARITY ACTIVE_LOW";
+  attribute x_interface_info of interrupt : signal is
+    "xilinx.com:signal:interrupt:1.0 interrupt INTERRUPT";
+  attribute x_interface_parameter of interrupt : signal is
+    "XIL_INTERFACENAME interrupt, SENSITIVITY LEVEL_HIGH";
 
-  attribute x_interface_info of s_axis_video_tdata        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TDATA";
-  attribute x_interface_info of s_axis_video_tuser        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TUSER";
-  attribute x_interface_info of s_axis_video_tlast        : signal is "xilinx.com:interface:axis:1.0 s_axis_video TLAST";
-  attribute x_interface_info of s_axis_video_tvalid       : signal is "xilinx.com:interface:axis:1.0 s_axis_video TVALID";
-  attribute x_interface_info of s_axis_video_tready       : signal is "xilinx.com:interface:axis:1.0 s_axis_video TREADY";
-  attribute x_interface_parameter of s_axis_video_tdata   : signal is
+  attribute x_interface_info of s_axis_video_tdata : signal is
+    "xilinx.com:interface:axis:1.0 s_axis_video TDATA";
+  attribute x_interface_info of s_axis_video_tuser : signal is
+    "xilinx.com:interface:axis:1.0 s_axis_video TUSER";
+  attribute x_interface_info of s_axis_video_tlast : signal is
+    "xilinx.com:interface:axis:1.0 s_axis_video TLAST";
+  attribute x_interface_info of s_axis_video_tvalid : signal is
+    "xilinx.com:interface:axis:1.0 s_axis_video TVALID";
+  attribute x_interface_info of s_axis_video_tready : signal is
+    "xilinx.com:interface:axis:1.0 s_axis_video TREADY";
+  attribute x_interface_parameter of s_axis_video_tdata : signal is
     "XIL_INTERFACENAME s_axis_video, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
     "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
-  attribute x_interface_info of m_axis_corners_tdata      : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TDATA";
-  attribute x_interface_info of m_axis_corners_tlast      : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TLAST";
-  attribute x_interface_info of m_axis_corners_tvalid     : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TVALID";
-  attribute x_interface_info of m_axis_corners_tready     : signal is "xilinx.com:interface:axis:1.0 m_axis_corners TREADY";
+  attribute x_interface_info of m_axis_corners_tdata : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_corners TDATA";
+  attribute x_interface_info of m_axis_corners_tlast : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_corners TLAST";
+  attribute x_interface_info of m_axis_corners_tvalid : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_corners TVALID";
+  attribute x_interface_info of m_axis_corners_tready : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_corners TREADY";
   attribute x_interface_parameter of m_axis_corners_tdata : signal is
     "XIL_INTERFACENAME m_axis_corners, TDATA_NUM_BYTES 8, TUSER_WIDTH 0, HAS_TLAST 1, HAS_TREADY 1, " &
     "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
-  attribute x_interface_info of m_axis_score_tdata        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TDATA";
-  attribute x_interface_info of m_axis_score_tuser        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TUSER";
-  attribute x_interface_info of m_axis_score_tlast        : signal is "xilinx.com:interface:axis:1.0 m_axis_score TLAST";
-  attribute x_interface_info of m_axis_score_tvalid       : signal is "xilinx.com:interface:axis:1.0 m_axis_score TVALID";
-  attribute x_interface_info of m_axis_score_tready       : signal is "xilinx.com:interface:axis:1.0 m_axis_score TREADY";
-  attribute x_interface_parameter of m_axis_score_tdata   : signal is
+  attribute x_interface_info of m_axis_score_tdata : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_score TDATA";
+  attribute x_interface_info of m_axis_score_tuser : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_score TUSER";
+  attribute x_interface_info of m_axis_score_tlast : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_score TLAST";
+  attribute x_interface_info of m_axis_score_tvalid : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_score TVALID";
+  attribute x_interface_info of m_axis_score_tready : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_score TREADY";
+  attribute x_interface_parameter of m_axis_score_tdata : signal is
     "XIL_INTERFACENAME m_axis_score, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
     "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
-  attribute x_interface_info of s_axi_ctrl_awaddr         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWADDR";
-  attribute x_interface_info of s_axi_ctrl_awprot         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWPROT";
-  attribute x_interface_info of s_axi_ctrl_awvalid        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWVALID";
-  attribute x_interface_info of s_axi_ctrl_awready        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWREADY";
-  attribute x_interface_info of s_axi_ctrl_wdata          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WDATA";
-  attribute x_interface_info of s_axi_ctrl_wstrb          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WSTRB";
-  attribute x_interface_info of s_axi_ctrl_wvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WVALID";
-  attribute x_interface_info of s_axi_ctrl_wready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl WREADY";
-  attribute x_interface_info of s_axi_ctrl_bresp          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BRESP";
-  attribute x_interface_info of s_axi_ctrl_bvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BVALID";
-  attribute x_interface_info of s_axi_ctrl_bready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl BREADY";
-  attribute x_interface_info of s_axi_ctrl_araddr         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARADDR";
-  attribute x_interface_info of s_axi_ctrl_arprot         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARPROT";
-  attribute x_interface_info of s_axi_ctrl_arvalid        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARVALID";
-  attribute x_interface_info of s_axi_ctrl_arready        : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARREADY";
-  attribute x_interface_info of s_axi_ctrl_rdata          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RDATA";
-  attribute x_interface_info of s_axi_ctrl_rresp          : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RRESP";
-  attribute x_interface_info of s_axi_ctrl_rvalid         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RVALID";
-  attribute x_interface_info of s_axi_ctrl_rready         : signal is "xilinx.com:interface:aximm:1.0 s_axi_ctrl RREADY";
-  attribute x_interface_parameter of s_axi_ctrl_awaddr    : signal is
+  attribute x_interface_info of s_axi_ctrl_awaddr : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWADDR";
+  attribute x_interface_info of s_axi_ctrl_awprot : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWPROT";
+  attribute x_interface_info of s_axi_ctrl_awvalid : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWVALID";
+  attribute x_interface_info of s_axi_ctrl_awready : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl AWREADY";
+  attribute x_interface_info of s_axi_ctrl_wdata : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl WDATA";
+  attribute x_interface_info of s_axi_ctrl_wstrb : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl WSTRB";
+  attribute x_interface_info of s_axi_ctrl_wvalid : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl WVALID";
+  attribute x_interface_info of s_axi_ctrl_wready : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl WREADY";
+  attribute x_interface_info of s_axi_ctrl_bresp : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl BRESP";
+  attribute x_interface_info of s_axi_ctrl_bvalid : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl BVALID";
+  attribute x_interface_info of s_axi_ctrl_bready : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl BREADY";
+  attribute x_interface_info of s_axi_ctrl_araddr : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARADDR";
+  attribute x_interface_info of s_axi_ctrl_arprot : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARPROT";
+  attribute x_interface_info of s_axi_ctrl_arvalid : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARVALID";
+  attribute x_interface_info of s_axi_ctrl_arready : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl ARREADY";
+  attribute x_interface_info of s_axi_ctrl_rdata : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl RDATA";
+  attribute x_interface_info of s_axi_ctrl_rresp : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl RRESP";
+  attribute x_interface_info of s_axi_ctrl_rvalid : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl RVALID";
+  attribute x_interface_info of s_axi_ctrl_rready : signal is
+    "xilinx.com:interface:aximm:1.0 s_axi_ctrl RREADY";
+  attribute x_interface_parameter of s_axi_ctrl_awaddr : signal is
     "XIL_INTERFACENAME s_axi_ctrl, PROTOCOL AXI4LITE, DATA_WIDTH 32, ADDR_WIDTH 8, READ_WRITE_MODE READ_WRITE, " &
     "HAS_BURST 0, HAS_LOCK 0, HAS_PROT 1, HAS_CACHE 0, HAS_QOS 0, HAS_REGION 0, HAS_WSTRB 1, HAS_BRESP 1, " &
     "HAS_RRESP 1, NUM_READ_OUTSTANDING 1, NUM_WRITE_OUTSTANDING 1";
@@ -166,8 +204,8 @@ architecture rtl of fastnms_axi is
   signal cfg_threshold : unsigned(7 downto 0);
 
   -- Video in: the input skid buffer, then the gate.
-  signal v_in   : std_logic_vector(9 downto 0);
-  signal v_out  : std_logic_vector(9 downto 0);
+  signal v_in    : std_logic_vector(9 downto 0);
+  signal v_out   : std_logic_vector(9 downto 0);
   signal v_valid : std_logic;
   signal v_ready : std_logic;
   signal c_valid : std_logic; -- into the core
@@ -177,12 +215,12 @@ architecture rtl of fastnms_axi is
   signal c_eol   : std_logic;
 
   -- Core output.
-  signal k_valid : std_logic;
-  signal k_ready : std_logic;
-  signal k_x     : unsigned(X_BITS - 1 downto 0);
-  signal k_y     : unsigned(Y_BITS - 1 downto 0);
-  signal k_score : unsigned(SCORE_BITS - 1 downto 0);
-  signal k_eof   : std_logic;
+  signal k_valid    : std_logic;
+  signal k_ready    : std_logic;
+  signal k_x        : unsigned(X_BITS - 1 downto 0);
+  signal k_y        : unsigned(Y_BITS - 1 downto 0);
+  signal k_score    : unsigned(SCORE_BITS - 1 downto 0);
+  signal k_eof      : std_logic;
   signal open_frame : std_logic;
 
   -- Records: packed, then the FIFO.
@@ -193,6 +231,9 @@ architecture rtl of fastnms_axi is
   signal f_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
   signal f_busy  : std_logic;
   signal f_kind  : std_logic_vector(1 downto 0);
+  signal f_x     : std_logic_vector(X_BITS - 1 downto 0);
+  signal f_y     : std_logic_vector(Y_BITS - 1 downto 0);
+  signal f_score : std_logic_vector(SCORE_BITS - 1 downto 0);
   signal f_empty : std_logic;
   signal f_last  : std_logic;
 
@@ -451,19 +492,20 @@ begin
   f_empty <= f_kind(1) and f_kind(0);
   f_last  <= f_kind(1) or f_kind(0);
 
+  f_x     <= f_data(X_BITS + Y_BITS + SCORE_BITS - 1 downto Y_BITS + SCORE_BITS);
+  f_y     <= f_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS);
+  f_score <= f_data(SCORE_BITS - 1 downto 0);
+
   record_out : process (all) is
   begin
 
-    m_axis_corners_tdata              <= (others => '0');
-    m_axis_corners_tdata(REC_X_LSB + X_BITS - 1 downto REC_X_LSB) <=
-      f_data(X_BITS + Y_BITS + SCORE_BITS - 1 downto Y_BITS + SCORE_BITS);
-    m_axis_corners_tdata(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB) <=
-      f_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS);
-    m_axis_corners_tdata(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <=
-      f_data(SCORE_BITS - 1 downto 0);
-    m_axis_corners_tdata(REC_EMPTY)   <= f_empty;
-    m_axis_corners_tdata(REC_LAST)    <= f_last;
-    m_axis_corners_tdata(REC_ABORTED) <= f_kind(1) and not f_kind(0);
+    m_axis_corners_tdata                                                      <= (others => '0');
+    m_axis_corners_tdata(REC_X_LSB + X_BITS - 1 downto REC_X_LSB)             <= f_x;
+    m_axis_corners_tdata(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB)             <= f_y;
+    m_axis_corners_tdata(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <= f_score;
+    m_axis_corners_tdata(REC_EMPTY)                                           <= f_empty;
+    m_axis_corners_tdata(REC_LAST)                                            <= f_last;
+    m_axis_corners_tdata(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
 
   end process record_out;
 

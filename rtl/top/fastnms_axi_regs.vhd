@@ -38,35 +38,35 @@ entity fastnms_axi_regs is
     CORNER_FIFO_DEPTH : positive := 512
   );
   port (
-    clk             : in    std_logic;
-    rst             : in    std_logic;
+    clk : in    std_logic;
+    rst : in    std_logic;
     -- AXI4-Lite slave
-    s_axi_awaddr    : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
-    s_axi_awvalid   : in    std_logic;
-    s_axi_awready   : out   std_logic;
-    s_axi_wdata     : in    std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
-    s_axi_wstrb     : in    std_logic_vector(REG_DATA_WIDTH / 8 - 1 downto 0);
-    s_axi_wvalid    : in    std_logic;
-    s_axi_wready    : out   std_logic;
-    s_axi_bresp     : out   std_logic_vector(1 downto 0);
-    s_axi_bvalid    : out   std_logic;
-    s_axi_bready    : in    std_logic;
-    s_axi_araddr    : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
-    s_axi_arvalid   : in    std_logic;
-    s_axi_arready   : out   std_logic;
-    s_axi_rdata     : out   std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
-    s_axi_rresp     : out   std_logic_vector(1 downto 0);
-    s_axi_rvalid    : out   std_logic;
-    s_axi_rready    : in    std_logic;
+    s_axi_awaddr  : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
+    s_axi_awvalid : in    std_logic;
+    s_axi_awready : out   std_logic;
+    s_axi_wdata   : in    std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+    s_axi_wstrb   : in    std_logic_vector(REG_DATA_WIDTH / 8 - 1 downto 0);
+    s_axi_wvalid  : in    std_logic;
+    s_axi_wready  : out   std_logic;
+    s_axi_bresp   : out   std_logic_vector(1 downto 0);
+    s_axi_bvalid  : out   std_logic;
+    s_axi_bready  : in    std_logic;
+    s_axi_araddr  : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
+    s_axi_arvalid : in    std_logic;
+    s_axi_arready : out   std_logic;
+    s_axi_rdata   : out   std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+    s_axi_rresp   : out   std_logic_vector(1 downto 0);
+    s_axi_rvalid  : out   std_logic;
+    s_axi_rready  : in    std_logic;
     -- control
-    enable          : out   std_logic;
-    soft_reset      : out   std_logic; -- one-clock pulse
-    soft_busy       : in    std_logic; -- read back as CTRL.SOFT_RESET
-    cfg_pending     : out   std_logic;
-    cfg_apply       : in    std_logic;
-    cfg_width       : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
-    cfg_height      : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    cfg_threshold   : out   unsigned(7 downto 0);
+    enable        : out   std_logic;
+    soft_reset    : out   std_logic; -- one-clock pulse
+    soft_busy     : in    std_logic; -- read back as CTRL.SOFT_RESET
+    cfg_pending   : out   std_logic;
+    cfg_apply     : in    std_logic;
+    cfg_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height    : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    cfg_threshold : out   unsigned(7 downto 0);
     -- status
     busy            : in    std_logic;
     evt_eol_early   : in    std_logic;
@@ -82,7 +82,7 @@ end entity fastnms_axi_regs;
 
 architecture rtl of fastnms_axi_regs is
 
-  constant INDEX_BITS : positive := REG_ADDR_WIDTH - 2;
+  constant INDEX_BITS : positive                     := REG_ADDR_WIDTH - 2;
   constant OKAY       : std_logic_vector(1 downto 0) := "00";
   constant SLVERR     : std_logic_vector(1 downto 0) := "10";
 
@@ -142,6 +142,22 @@ architecture rtl of fastnms_axi_regs is
     return w;
   end function place;
 
+  -- The OR of the words whose select bit is set.
+  function selected (w : words_t; sel : sel_t) return word_t is
+    variable r : word_t := (others => '0');
+  begin
+
+    for i in w'range loop
+
+      if sel(i) = '1' then
+        r := r or w(i);
+      end if;
+
+    end loop;
+
+    return r;
+  end function selected;
+
   -- The read-only constants.
   constant VERSION_WORD : word_t := place(VERSION_MAJOR_RESET, VERSION_MAJOR_LSB) or
                                     place(VERSION_MINOR_RESET, VERSION_MINOR_LSB) or
@@ -162,15 +178,19 @@ architecture rtl of fastnms_axi_regs is
   signal w_full    : std_logic;
   signal w_data    : word_t;
   signal w_strb_ok : std_logic;
-  signal w_sel     : sel_t;  -- the register addressed (one-hot)
+  signal w_sel     : sel_t; -- the register addressed (one-hot)
   signal w_ok      : std_logic;
-  -- Clamping flags of the written value.
-  signal w_below_7  : std_logic;
-  signal w_above_w  : std_logic;
-  signal w_above_h  : std_logic;
-  signal b_valid    : std_logic;
-  signal b_resp     : std_logic_vector(1 downto 0);
-  signal do_write   : std_logic;
+  -- Clamping flags of the written value, and the halves they come from.
+  signal w_high    : std_logic;
+  signal w_low_7   : std_logic;
+  signal w_low_w   : std_logic;
+  signal w_low_h   : std_logic;
+  signal w_below_7 : std_logic;
+  signal w_above_w : std_logic;
+  signal w_above_h : std_logic;
+  signal b_valid   : std_logic;
+  signal b_resp    : std_logic_vector(1 downto 0);
+  signal do_write  : std_logic;
 
   -- Read channel.
   type read_state_t is (r_idle, r_decode, r_respond);
@@ -186,12 +206,12 @@ architecture rtl of fastnms_axi_regs is
   signal words    : words_t;
 
   -- Registers.
-  signal enable_r     : std_logic;
-  signal irq_enable   : std_logic;
-  signal soft_pulse   : std_logic;
-  signal pending      : std_logic;
-  signal thr_shadow   : unsigned(7 downto 0);
-  signal width_shadow : width_t;
+  signal enable_r      : std_logic;
+  signal irq_enable    : std_logic;
+  signal soft_pulse    : std_logic;
+  signal pending       : std_logic;
+  signal thr_shadow    : unsigned(7 downto 0);
+  signal width_shadow  : width_t;
   signal height_shadow : height_t;
   signal thr_active    : unsigned(7 downto 0);
   signal width_active  : width_t;
@@ -202,12 +222,12 @@ architecture rtl of fastnms_axi_regs is
   signal busy_r        : std_logic;
 
   -- Frame statistics.
-  signal rec_pulse     : std_logic;
-  signal last_pulse    : std_logic;
-  signal done_pulse    : std_logic; -- the clock after last_pulse
-  signal corners       : unsigned(31 downto 0);
-  signal frames        : unsigned(31 downto 0);
-  signal corner_count  : unsigned(31 downto 0);
+  signal rec_pulse    : std_logic;
+  signal last_pulse   : std_logic;
+  signal done_pulse   : std_logic; -- the clock after last_pulse
+  signal corners      : unsigned(31 downto 0);
+  signal frames       : unsigned(31 downto 0);
+  signal corner_count : unsigned(31 downto 0);
 
 begin
 
@@ -240,43 +260,40 @@ begin
         w_strb_ok <= and s_axi_wstrb;
       end if;
 
-      case w_state is
-
-        when w_idle =>
-
-          if aw_full = '1' and w_full = '1' then
-            w_state <= w_decode;
-          end if;
-
-        when w_decode =>
-
-          w_state <= w_execute;
-
-        when w_execute =>
-
-          w_state <= w_respond;
-          b_valid <= '1';
-          b_resp  <= OKAY when w_ok = '1' else SLVERR;
-          aw_full <= '0';
-          w_full  <= '0';
-
-        when w_respond =>
-
-          if s_axi_bready = '1' then
-            b_valid <= '0';
-            w_state <= w_idle;
-          end if;
-
-      end case;
+      -- (if/elsif, not case: GHDL writes a case as a latch-like Verilog mux)
+      if w_state = w_idle then
+        if aw_full = '1' and w_full = '1' then
+          w_state <= w_decode;
+        end if;
+      elsif w_state = w_decode then
+        w_state <= w_execute;
+      elsif w_state = w_execute then
+        w_state <= w_respond;
+        b_valid <= '1';
+        b_resp  <= SLVERR;
+        if w_ok = '1' then
+          b_resp <= OKAY;
+        end if;
+        aw_full <= '0';
+        w_full  <= '0';
+      elsif s_axi_bready = '1' then
+        b_valid <= '0';
+        w_state <= w_idle;
+      end if;
 
       -- Decoded one clock ahead of the write itself.
       for i in 0 to REG_COUNT - 1 loop
         w_sel(i) <= to_sl(aw_index = i);
       end loop;
-      w_ok      <= to_sl(aw_index < REG_COUNT) and w_strb_ok;
-      w_below_7 <= not at_least(unsigned(w_data), 7);
-      w_above_w <= at_least(unsigned(w_data), MAX_WIDTH + 1);
-      w_above_h <= at_least(unsigned(w_data), MAX_HEIGHT + 1);
+      w_ok <= to_sl(aw_index < REG_COUNT) and w_strb_ok;
+      -- The clamping flags in two steps (ready by the execute clock).
+      w_high    <= or w_data(REG_DATA_WIDTH - 1 downto 16);
+      w_low_7   <= not at_least(unsigned(w_data(15 downto 0)), 7);
+      w_low_w   <= at_least(unsigned(w_data(15 downto 0)), MAX_WIDTH + 1);
+      w_low_h   <= at_least(unsigned(w_data(15 downto 0)), MAX_HEIGHT + 1);
+      w_below_7 <= w_low_7 and not w_high;
+      w_above_w <= w_low_w or w_high;
+      w_above_h <= w_low_h or w_high;
 
       if rst = '1' then
         w_state <= w_idle;
@@ -296,7 +313,6 @@ begin
   s_axi_rresp   <= r_resp;
 
   read_channel : process (clk) is
-    variable data : word_t;
   begin
 
     if rising_edge(clk) then
@@ -310,36 +326,23 @@ begin
       end loop;
       r_ok <= to_sl(ar_index < REG_COUNT);
 
-      case r_state is
-
-        when r_idle =>
-
-          if ar_full = '1' then
-            r_state <= r_decode;
-          end if;
-
-        when r_decode =>
-
-          data := (others => '0');
-          for i in 0 to REG_COUNT - 1 loop
-            if r_sel(i) = '1' then
-              data := data or words(i);
-            end if;
-          end loop;
-          r_data  <= data;
-          r_resp  <= OKAY when r_ok = '1' else SLVERR;
-          r_valid <= '1';
-          ar_full <= '0';
-          r_state <= r_respond;
-
-        when r_respond =>
-
-          if s_axi_rready = '1' then
-            r_valid <= '0';
-            r_state <= r_idle;
-          end if;
-
-      end case;
+      if r_state = r_idle then
+        if ar_full = '1' then
+          r_state <= r_decode;
+        end if;
+      elsif r_state = r_decode then
+        r_data <= selected(words, r_sel);
+        r_resp <= SLVERR;
+        if r_ok = '1' then
+          r_resp <= OKAY;
+        end if;
+        r_valid <= '1';
+        ar_full <= '0';
+        r_state <= r_respond;
+      elsif s_axi_rready = '1' then
+        r_valid <= '0';
+        r_state <= r_idle;
+      end if;
 
       if rst = '1' then
         r_state <= r_idle;
@@ -354,14 +357,15 @@ begin
 
   clear_mask <= w_data(clear_mask'range) when do_write = '1' and w_sel(REG_STATUS) = '1' else
                 (others => '0');
-  events     <= (
-                  STATUS_FRAME_DONE  => done_pulse,
-                  STATUS_EOL_EARLY   => evt_eol_early,
-                  STATUS_EOL_LATE    => evt_eol_late,
-                  STATUS_SOF_MISSING => evt_sof_missing,
-                  STATUS_SOF_EARLY   => evt_sof_early,
-                  STATUS_OVERFLOW    => evt_overflow
-                );
+  events     <=
+  (
+    STATUS_FRAME_DONE  => done_pulse,
+    STATUS_EOL_EARLY   => evt_eol_early,
+    STATUS_EOL_LATE    => evt_eol_late,
+    STATUS_SOF_MISSING => evt_sof_missing,
+    STATUS_SOF_EARLY   => evt_sof_early,
+    STATUS_OVERFLOW    => evt_overflow
+  );
 
   registers : process (clk) is
   begin
@@ -493,20 +497,24 @@ begin
 
   -- ---- read values -----------------------------------------------------------
 
-  words <= (
-             REG_ID           => ID_MAGIC_RESET,
-             REG_VERSION      => VERSION_WORD,
-             REG_CTRL         => place(enable_r, CTRL_ENABLE) or place(soft_busy, CTRL_SOFT_RESET) or
-                                 place(irq_enable, CTRL_IRQ_ENABLE),
-             REG_STATUS       => place(busy_r, STATUS_BUSY) or place(sticky, STATUS_FRAME_DONE),
-             REG_THRESHOLD    => std_logic_vector(resize(thr_shadow, REG_DATA_WIDTH)),
-             REG_WIDTH        => std_logic_vector(resize(width_shadow, REG_DATA_WIDTH)),
-             REG_HEIGHT       => std_logic_vector(resize(height_shadow, REG_DATA_WIDTH)),
-             REG_MODE         => MODE_WORD,
-             REG_CORNER_COUNT => std_logic_vector(corner_count),
-             REG_FRAME_COUNT  => std_logic_vector(frames),
-             REG_MAX_SIZE     => MAX_WORD,
-             REG_BUILD        => BUILD_WORD
-           );
+  words <=
+  (
+    REG_ID           => ID_MAGIC_RESET,
+    REG_VERSION      => VERSION_WORD,
+    REG_CTRL         => place(enable_r, CTRL_ENABLE) or place(soft_busy,
+                                                               CTRL_SOFT_RESET) or
+    place(irq_enable,
+           CTRL_IRQ_ENABLE),
+    REG_STATUS       => place(busy_r, STATUS_BUSY) or place(sticky,
+                                                             STATUS_FRAME_DONE),
+    REG_THRESHOLD    => std_logic_vector(resize(thr_shadow, REG_DATA_WIDTH)),
+    REG_WIDTH        => std_logic_vector(resize(width_shadow, REG_DATA_WIDTH)),
+    REG_HEIGHT       => std_logic_vector(resize(height_shadow, REG_DATA_WIDTH)),
+    REG_MODE         => MODE_WORD,
+    REG_CORNER_COUNT => std_logic_vector(corner_count),
+    REG_FRAME_COUNT  => std_logic_vector(frames),
+    REG_MAX_SIZE     => MAX_WORD,
+    REG_BUILD        => BUILD_WORD
+  );
 
 end architecture rtl;

@@ -29,7 +29,7 @@ architecture rtl of fastnms_counter is
 
   signal count : unsigned(WIDTH - 1 downto 0);
   -- ones(k): segment k is all ones.
-  signal ones  : std_logic_vector(SEGMENTS - 1 downto 0);
+  signal ones : std_logic_vector(SEGMENTS - 1 downto 0);
   -- carry(k): segment k counts on this clock.
   signal carry : std_logic_vector(SEGMENTS - 1 downto 0);
 
@@ -46,8 +46,10 @@ begin
   end generate carries;
 
   counting : process (clk) is
+
     variable lo : natural;
     variable hi : natural;
+
   begin
 
     if rising_edge(clk) then

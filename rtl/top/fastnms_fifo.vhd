@@ -40,12 +40,14 @@ architecture rtl of fastnms_fifo is
   constant ADDR_BITS : positive := clog2(DEPTH);
 
   -- Pointers with one wrap bit: equal when empty, equal but for the wrap
-  -- bit when full. wr_next is wr_ptr + 1.
+  -- bit when full. wr_next is wr_ptr + 1, rd_next rd_ptr + 1.
   signal wr_ptr  : unsigned(ADDR_BITS downto 0);
   signal wr_next : unsigned(ADDR_BITS downto 0);
   signal rd_ptr  : unsigned(ADDR_BITS downto 0);
+  signal rd_next : unsigned(ADDR_BITS downto 0);
 
-  signal empty   : std_logic; -- no word in the RAM
+  signal empty   : std_logic; -- no word in the RAM (a register)
+  signal single  : std_logic; -- one word in the RAM
   signal full    : std_logic; -- 2**ADDR_BITS words in the RAM
   signal last    : std_logic; -- 2**ADDR_BITS - 1 words in the RAM
   signal ready   : std_logic;
@@ -53,18 +55,18 @@ architecture rtl of fastnms_fifo is
   signal read_en : std_logic; -- the RAM's read register advances
   signal read    : std_logic; -- ... and takes a word
 
-  signal q_valid    : std_logic;
-  signal q_data     : std_logic_vector(WIDTH - 1 downto 0);
-  signal skid_ready : std_logic;
+  signal q_valid     : std_logic;
+  signal q_data      : std_logic_vector(WIDTH - 1 downto 0);
+  signal skid_ready  : std_logic;
   signal out_valid_i : std_logic;
 
 begin
 
-  empty <= to_sl(wr_ptr = rd_ptr);
-  full  <= to_sl(wr_ptr(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
-                 wr_ptr(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
-  last  <= to_sl(wr_next(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
-                 wr_next(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
+  single <= to_sl(wr_ptr = rd_next);
+  full   <= to_sl(wr_ptr(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
+                  wr_ptr(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
+  last   <= to_sl(wr_next(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
+                  wr_next(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
 
   write   <= in_valid and ready;
   read_en <= not q_valid or skid_ready;
@@ -83,12 +85,15 @@ begin
       end if;
 
       if rst = '1' then
-        rd_ptr <= (others => '0');
+        rd_ptr  <= (others => '0');
+        rd_next <= to_unsigned(1, rd_next'length);
       elsif read = '1' then
-        rd_ptr <= rd_ptr + 1;
+        rd_ptr  <= rd_next;
+        rd_next <= rd_next + 1;
       end if;
 
       ready <= not (full or (last and write));
+      empty <= (empty or (read and single)) and not write;
       if read_en = '1' then
         q_valid <= not empty;
       end if;
@@ -96,6 +101,7 @@ begin
 
       if rst = '1' then
         ready   <= '0';
+        empty   <= '1';
         q_valid <= '0';
         busy    <= '0';
       end if;

@@ -109,26 +109,20 @@ begin
       if framed = '1' then
         -- At a start of frame the pixel is (0, 0): x_last, late, y_last are 0.
         if p_eol = '1' then
-          err_eol_early <= not ((x_last and not p_sof) or (late and not p_sof));
+          err_eol_early <= not ((x_last or late) and not p_sof);
           x_last        <= '0';
           late          <= '0';
           if y_last = '1' and p_sof = '0' then
             active <= '0';
-            y_last <= '0';
-          elsif p_sof = '1' then
-            y_last <= '0';
-          else
-            y_last <= to_sl(y = h_m2);
           end if;
+          y_last <= to_sl(y = h_m2) and not y_last and not p_sof;
         else
-          if x_last = '1' and p_sof = '0' then
-            err_eol_late <= '1';
-            late         <= '1';
-          end if;
+          err_eol_late <= x_last and not p_sof;
+          late         <= (late or x_last) and not p_sof;
+          x_last       <= to_sl(x = w_m2) and not x_last and not p_sof;
           if p_sof = '1' then
-            late <= '0';
+            y_last <= '0';
           end if;
-          x_last <= to_sl(x = w_m2) and not p_sof and not x_last;
         end if;
       end if;
 

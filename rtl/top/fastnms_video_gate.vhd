@@ -80,7 +80,7 @@ begin
         if enable = '0' then
           discard <= '1';
         elsif cfg_pending = '1' then
-          cfg_apply <= '1';
+          cfg_apply  <= '1';
           wait_count <= SETTLE;
         elsif skid_ready = '1' then
           discard <= '0';
@@ -88,13 +88,13 @@ begin
       end if;
 
       if soft = '1' then
-        discard <= '1';
+        discard    <= '1';
         wait_count <= 0;
       end if;
       if rst = '1' then
-        discard   <= '0';
+        discard    <= '0';
         wait_count <= 0;
-        cfg_apply <= '0';
+        cfg_apply  <= '0';
       end if;
     end if;
 

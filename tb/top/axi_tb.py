@@ -1,0 +1,715 @@
+"""cocotb testbench of fastnms_axi, the AXI top level: video in through
+cocotbext-axi's AxiStreamSource, corner records (and the score video) out
+through AxiStreamSinks, registers through AxiLiteMaster. Records are checked
+against the golden model (fastnms.model.detect) and, for opencv + 3x3, against
+cv2.FastFeatureDetector; the score video against fastnms.fast.fast_maps.
+
+Configuration from pytest (tb/top/test_axi.py): TB_GENERICS (the top's
+generics), TB_IDLE (input idle probability), TB_STALL (corner output
+back-pressure probability), TB_CROPS (photograph crops).
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import logging
+import os
+import random
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+
+import cocotb
+import cv2
+import numpy as np
+import testimages
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, Event, RisingEdge, Timer
+from cocotbext.axi import (
+    AxiLiteBus,
+    AxiLiteMaster,
+    AxiResp,
+    AxiStreamBus,
+    AxiStreamFrame,
+    AxiStreamSink,
+    AxiStreamSource,
+)
+from fastnms import regs
+from fastnms.fast import fast_maps
+from fastnms.model import detect
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+MAX_HEIGHT = GENERICS["MAX_HEIGHT"]
+SCORE = GENERICS["SCORE"]
+NMS = GENERICS["NMS"]
+SCORE_VIDEO = bool(GENERICS.get("SCORE_VIDEO", False))
+FIFO_DEPTH = GENERICS.get("CORNER_FIFO_DEPTH", 512)
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+PERIOD_NS = 10
+
+Record = tuple[int, int, int]
+
+
+def all_generics() -> dict[str, object]:
+    """The top's generics, defaults filled in."""
+    return {"SCORE_VIDEO": False, "CORNER_FIFO_DEPTH": 512, **GENERICS}
+
+
+def opencv_keypoints(img: np.ndarray, threshold: int) -> list[Record]:
+    """cv2.FAST with nonmaxSuppression=True, as records sorted by y then x."""
+    fast = cv2.FastFeatureDetector_create(threshold, True, cv2.FAST_FEATURE_DETECTOR_TYPE_9_16)
+    points = [(int(k.pt[0]), int(k.pt[1]), int(k.response)) for k in fast.detect(img)]
+    return sorted(points, key=lambda p: (p[1], p[0]))
+
+
+def golden(img: np.ndarray, threshold: int) -> list[Record]:
+    return [tuple(int(v) for v in r) for r in detect(img, threshold, SCORE, NMS)]
+
+
+def decode(frame: AxiStreamFrame) -> tuple[list[Record], list[int]]:
+    """The records (x, y, score) of one received corner frame and their flags
+    (EMPTY | LAST << 1 | ABORTED << 2)."""
+    records, flags = [], []
+    for word in frame.tdata:
+        records.append((regs.REC_X.get(word), regs.REC_Y.get(word), regs.REC_SCORE.get(word)))
+        flags.append(
+            regs.REC_EMPTY.get(word)
+            | regs.REC_LAST.get(word) << 1
+            | regs.REC_ABORTED.get(word) << 2
+        )
+    return records, flags
+
+
+def mismatch(got: list, want: list, label: str) -> str:
+    padded = zip(got + [None] * len(want), want + [None] * len(got), strict=False)
+    for i, (g, w) in enumerate(padded):
+        if g != w:
+            return f"{label}: rtl {len(got)} records, golden {len(want)}; #{i}: rtl {g}, golden {w}"
+    return f"{label}: equal"
+
+
+def video_lines(img: np.ndarray) -> list[AxiStreamFrame]:
+    """A well-formed frame as AXI4-Stream packets, one per line (tlast at its end),
+    tuser on the first pixel."""
+    h, w = img.shape
+    return [
+        AxiStreamFrame(bytes(img[y].tobytes()), tuser=[int(y == 0)] + [0] * (w - 1))
+        for y in range(h)
+    ]
+
+
+def pauses(rng: random.Random, probability: float) -> Iterator[bool]:
+    while True:
+        yield rng.random() < probability
+
+
+class TB:
+    """Create with `await TB.create(dut, ...)`: the drivers must see aresetn
+    fall before the first clock edge (the DUT's outputs are undefined until
+    its reset)."""
+
+    def __init__(self, dut, idle: float, stall: float):
+        self.dut = dut
+        self.rng = random.Random(cocotb.RANDOM_SEED)
+        self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        dut._log.info(
+            "seed=%d idle=%.2f stall=%.2f generics=%s", cocotb.RANDOM_SEED, idle, stall, GENERICS
+        )
+        self.source = AxiStreamSource(
+            AxiStreamBus.from_prefix(dut, "s_axis_video"), dut.aclk, dut.aresetn, False
+        )
+        self.sink = AxiStreamSink(
+            AxiStreamBus.from_prefix(dut, "m_axis_corners"),
+            dut.aclk,
+            dut.aresetn,
+            False,
+            byte_lanes=1,
+        )
+        self.score_sink = None
+        if SCORE_VIDEO:
+            self.score_sink = AxiStreamSink(
+                AxiStreamBus.from_prefix(dut, "m_axis_score"), dut.aclk, dut.aresetn, False
+            )
+        else:
+            dut.m_axis_score_tready.value = 0
+        self.axil = AxiLiteMaster(
+            AxiLiteBus.from_prefix(dut, "s_axi_ctrl"), dut.aclk, dut.aresetn, False
+        )
+        for name in ("s_axis_video", "m_axis_corners", "m_axis_score", "s_axi_ctrl"):
+            logging.getLogger(f"cocotb.{dut._name}.{name}").setLevel(logging.WARNING)
+        self.set_idle(idle)
+        self.set_stall(stall)
+        self.cycle = 0
+        self.first_pixel: int | None = None
+        self.last_records: list[int] = []  # cycle of each frame's last record
+        self.input_stalls = 0  # cycles with s_axis_video tvalid high and tready low
+        self.score_without_video = 0
+
+    @classmethod
+    async def create(cls, dut, idle: float = IDLE, stall: float = STALL) -> TB:
+        dut.aresetn.value = 1
+        await Timer(1, "ns")
+        tb = cls(dut, idle, stall)
+        await Timer(1, "ns")
+        dut.aresetn.value = 0  # the drivers see this edge and wait for the reset's end
+        await Timer(1, "ns")
+        cocotb.start_soon(Clock(dut.aclk, PERIOD_NS, unit="ns").start())
+        cocotb.start_soon(tb._monitor())
+        return tb
+
+    def set_idle(self, idle: float) -> None:
+        self.source.set_pause_generator(pauses(self.rng, idle) if idle else None)
+        self.source.pause = False
+
+    def set_stall(self, stall: float) -> None:
+        self.sink.set_pause_generator(pauses(self.rng, stall) if stall else None)
+        self.sink.pause = False
+        if self.score_sink is not None:
+            self.score_sink.set_pause_generator(pauses(self.rng, stall / 3) if stall else None)
+            self.score_sink.pause = False
+
+    async def _monitor(self) -> None:
+        dut = self.dut
+        while True:
+            await RisingEdge(dut.aclk)
+            self.cycle += 1
+            if dut.s_axis_video_tvalid.value == 1:
+                if dut.s_axis_video_tready.value == 1:
+                    if self.first_pixel is None:
+                        self.first_pixel = self.cycle
+                else:
+                    self.input_stalls += 1
+            if (
+                dut.m_axis_corners_tvalid.value == 1
+                and dut.m_axis_corners_tready.value == 1
+                and dut.m_axis_corners_tlast.value == 1
+            ):
+                self.last_records.append(self.cycle)
+            if not SCORE_VIDEO and dut.m_axis_score_tvalid.value != 0:
+                self.score_without_video += 1
+
+    async def reset(self, cycles: int = 6) -> None:
+        self.dut.aresetn.value = 0
+        self.source.clear()  # what was queued belongs to the frame cut by the reset
+        await ClockCycles(self.dut.aclk, cycles)
+        self.sink.clear()
+        self.dut.aresetn.value = 1
+        await ClockCycles(self.dut.aclk, 4)  # the reset synchroniser
+
+    # ---- registers ------------------------------------------------------------
+
+    async def write(self, offset: int, value: int) -> None:
+        resp = await self.axil.write(offset, value.to_bytes(4, "little"))
+        assert resp.resp == AxiResp.OKAY, f"write 0x{offset:02x}: {resp.resp}"
+
+    async def read(self, offset: int) -> int:
+        resp = await self.axil.read(offset, 4)
+        assert resp.resp == AxiResp.OKAY, f"read 0x{offset:02x}: {resp.resp}"
+        return int.from_bytes(resp.data, "little")
+
+    async def configure(self, width: int, height: int, threshold: int) -> None:
+        await self.write(regs.WIDTH, width)
+        await self.write(regs.HEIGHT, height)
+        await self.write(regs.THRESHOLD, threshold)
+
+    async def status(self) -> int:
+        return await self.read(regs.STATUS)
+
+    async def errors(self) -> set[str]:
+        """The names of the STATUS error bits that are set."""
+        word = await self.status()
+        names = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
+        return {n for n in names if getattr(regs, f"STATUS_{n}").get(word)}
+
+    async def clear_status(self) -> None:
+        await self.write(regs.STATUS, 0xFFFFFFFE)
+        assert await self.status() & ~1 == 0
+
+    # ---- streams --------------------------------------------------------------
+
+    async def send_lines(self, lines: Sequence[AxiStreamFrame]) -> Event:
+        """Queue packets; returns an event set when the first one has been sent."""
+        first = Event()
+        for i, line in enumerate(lines):
+            if i == 0:
+                line.tx_complete = first
+            await self.source.send(line)
+        return first
+
+    async def send_frames(self, frames: Sequence[tuple[np.ndarray, int]]) -> None:
+        """Send frames back to back; the size and threshold of frame i+1 are
+        written over AXI-Lite once frame i's first line has gone in (so they
+        take effect at frame i+1's start of frame)."""
+        img, t = frames[0]
+        await self.configure(img.shape[1], img.shape[0], t)
+        for i, (img, _) in enumerate(frames):
+            first = await self.send_lines(video_lines(img))
+            if i + 1 < len(frames):
+                await first.wait()
+                nxt, t_next = frames[i + 1]
+                await self.configure(nxt.shape[1], nxt.shape[0], t_next)
+
+    async def receive(self, count: int, budget: int) -> list[AxiStreamFrame]:
+        """The next `count` corner frames; fails after `budget` clocks."""
+        got = []
+        for _ in range(count):
+            frame = await self._with_budget(self.sink.recv(), budget, "corner frame")
+            got.append(frame)
+        return got
+
+    async def _with_budget(self, coro, budget: int, what: str):
+        task = cocotb.start_soon(coro)
+        for _ in range(budget):
+            if task.done():
+                return task.result()
+            await RisingEdge(self.dut.aclk)
+        task.cancel()
+        raise AssertionError(f"no {what} within {budget} clocks")
+
+    async def idle_output(self, clocks: int = 200) -> None:
+        """Wait until nothing has come out for `clocks` clocks."""
+        quiet = 0
+        while quiet < clocks:
+            await RisingEdge(self.dut.aclk)
+            busy = self.dut.m_axis_corners_tvalid.value == 1 or not self.source.idle()
+            quiet = 0 if busy else quiet + 1
+
+    def check_frame(self, frame: AxiStreamFrame, want: list[Record], label: str) -> None:
+        records, flags = decode(frame)
+        if not want:
+            assert records == [(0, 0, 0)] and flags == [0b011], (
+                f"{label}: expected the empty-frame record, got {records} flags {flags}"
+            )
+            return
+        assert records == want, mismatch(records, want, label)
+        assert flags == [0] * (len(want) - 1) + [0b010], f"{label}: flags {flags}"
+
+    async def check_frames(
+        self, frames: Sequence[tuple[np.ndarray, int]], label: str, opencv: bool = True
+    ) -> None:
+        """Send frames, receive and check every one."""
+        sender = cocotb.start_soon(self.send_frames(frames))
+        total = sum(img.size for img, _ in frames)
+        slack = 1 / max(0.05, (1 - IDLE) * (1 - STALL))
+        got = await self.receive(len(frames), int(total * 3 * slack) + 20 * MAX_WIDTH + 2000)
+        await sender
+        for i, ((img, t), frame) in enumerate(zip(frames, got, strict=True)):
+            name = f"{label} frame {i} ({img.shape[1]}x{img.shape[0]} t={t})"
+            want = golden(img, t)
+            self.check_frame(frame, want, name + " vs golden")
+            if opencv and SCORE == "opencv" and NMS == "3x3":
+                cv = opencv_keypoints(img, t)
+                records, _ = decode(frame)
+                assert records == (cv or [(0, 0, 0)]), mismatch(records, cv, name + " vs cv2.FAST")
+            self.dut._log.info("%s: %d corners, equal", name, len(want))
+
+
+# ---- tests -----------------------------------------------------------------------
+
+
+@cocotb.test()
+async def registers(dut):
+    """ID, VERSION, reset values, read/write, clamping, MODE, read-only and
+    unmapped addresses, partial writes, write-1-to-clear."""
+    tb = await TB.create(dut, 0, 0)
+    await tb.reset()
+    generics = all_generics()
+    for name, reg in regs.REGISTERS.items():
+        value = await tb.read(reg.offset)
+        assert value == regs.reset_value(name, generics), f"{name} = 0x{value:08x} after reset"
+    assert await tb.read(regs.ID) == 0x46415354
+    major, minor, patch = regs.MAP_VERSION
+    assert await tb.read(regs.VERSION) == major << 16 | minor << 8 | patch
+
+    await tb.write(regs.THRESHOLD, 0xFFFFFF37)
+    assert await tb.read(regs.THRESHOLD) == 0x37
+    for written, want in [
+        (0, 7),
+        (6, 7),
+        (7, 7),
+        (MAX_WIDTH, MAX_WIDTH),
+        (MAX_WIDTH - 1, MAX_WIDTH - 1),
+        (MAX_WIDTH + 1, MAX_WIDTH),
+        (0x10000 | 9, MAX_WIDTH),
+        (0xFFFFFFFF, MAX_WIDTH),
+    ]:
+        await tb.write(regs.WIDTH, written)
+        assert await tb.read(regs.WIDTH) == want, f"WIDTH write {written}"
+    await tb.write(regs.HEIGHT, MAX_HEIGHT + 5)
+    assert await tb.read(regs.HEIGHT) == MAX_HEIGHT
+    await tb.write(regs.HEIGHT, 3)
+    assert await tb.read(regs.HEIGHT) == 7
+
+    # MODE: asking for a variant that is not built in changes nothing.
+    mode = await tb.read(regs.MODE)
+    for ask in (0x00, 0x11, 0x33, 0x21, 0xFFFFFFFF):
+        await tb.write(regs.MODE, ask)
+        assert await tb.read(regs.MODE) == mode
+
+    # Read-only registers ignore writes.
+    for name in ("ID", "VERSION", "CORNER_COUNT", "FRAME_COUNT", "MAX_SIZE", "BUILD"):
+        before = await tb.read(regs.REGISTERS[name].offset)
+        await tb.write(regs.REGISTERS[name].offset, 0x5A5A5A5A)
+        assert await tb.read(regs.REGISTERS[name].offset) == before, name
+
+    # Outside the map: SLVERR, reads 0.
+    resp = await tb.axil.read(0xFC, 4)
+    assert resp.resp == AxiResp.SLVERR and resp.data == bytes(4)
+    resp = await tb.axil.write(0x80, bytes(4))
+    assert resp.resp == AxiResp.SLVERR
+    # Partial writes: SLVERR and no effect.
+    resp = await tb.axil.write(regs.THRESHOLD, b"\x05")
+    assert resp.resp == AxiResp.SLVERR
+    assert await tb.read(regs.THRESHOLD) == 0x37
+
+    # CTRL read/write.
+    await tb.write(regs.CTRL, 0b100)
+    assert await tb.read(regs.CTRL) == 0b100
+    await tb.write(regs.CTRL, 0b001)
+    assert await tb.read(regs.CTRL) == 0b001
+
+    # Write-1-to-clear: a frame sets FRAME_DONE; writing 0 keeps it, 1 clears it.
+    await tb.configure(16, 9, 10)
+    img = testimages.blurred_noise(tb.np_rng, 16, 9)
+    await tb.send_frames([(img, 10)])
+    await tb.receive(1, 5000)
+    await ClockCycles(dut.aclk, 5)
+    assert regs.STATUS_FRAME_DONE.get(await tb.status())
+    await tb.write(regs.STATUS, 0)
+    assert regs.STATUS_FRAME_DONE.get(await tb.status())
+    await tb.write(regs.STATUS, regs.STATUS_FRAME_DONE.mask)
+    assert await tb.status() == 0
+    assert await tb.read(regs.FRAME_COUNT) == 1
+    assert await tb.read(regs.CORNER_COUNT) == len(golden(img, 10))
+
+
+@cocotb.test()
+async def generated_frames(dut):
+    """Every pattern, back to back, sizes 7x7 to MAX_WIDTH x MAX_HEIGHT, size
+    and threshold changed over AXI-Lite between frames, an empty frame."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    sizes = [
+        (7, 7),
+        (MAX_WIDTH, MAX_HEIGHT),
+        (9, 8),
+        (int(rng.integers(7, MAX_WIDTH + 1)), int(rng.integers(7, 24))),
+        (MAX_WIDTH, 7),
+        (8, int(rng.integers(7, MAX_HEIGHT + 1))),
+    ]
+    frames = []
+    for i, threshold in enumerate([0, 1, 10, 20, 50, 128, 254, 255, 5, 15, 30, 40]):
+        pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]
+        w, h = sizes[i % len(sizes)]
+        frames.append((pattern(rng, w, h), threshold))
+    assert any(not golden(img, t) for img, t in frames), "no empty frame among the cases"
+    await tb.check_frames(frames, "generated")
+    await ClockCycles(dut.aclk, 5)
+    assert await tb.read(regs.FRAME_COUNT) == len(frames)
+    img, t = frames[-1]
+    assert await tb.read(regs.CORNER_COUNT) == len(golden(img, t))
+    assert await tb.errors() == set()
+    assert tb.score_without_video == 0
+
+
+@cocotb.test()
+async def real_images(dut):
+    """Crops of real photographs (TB_CROPS: JSON list of [path, w, h, t])."""
+    crops = json.loads(os.environ.get("TB_CROPS", "[]"))
+    assert crops, "no crops given in TB_CROPS"
+    tb = await TB.create(dut)
+    await tb.reset()
+    frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
+    await tb.check_frames(frames, "photo")
+    assert await tb.errors() == set()
+
+
+@cocotb.test()
+async def empty_frame(dut):
+    """A frame without corners sends exactly one record: EMPTY and LAST, zeros."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    flat = np.full((10, 12), 77, dtype=np.uint8)
+    await tb.check_frames([(flat, 20), (flat, 0)], "empty")
+    await ClockCycles(dut.aclk, 5)
+    assert await tb.read(regs.CORNER_COUNT) == 0
+    assert await tb.read(regs.FRAME_COUNT) == 2
+
+
+def _good(tb: TB, w: int, h: int) -> np.ndarray:
+    return testimages.blurred_noise(tb.np_rng, w, h)
+
+
+@cocotb.test()
+async def malformed_then_good(dut):
+    """Each kind of malformed input sets its STATUS bit, never locks up, and
+    the well-formed frame after it is exact."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    w, h, t = min(MAX_WIDTH, 20), min(MAX_HEIGHT, 12), 10
+    await tb.configure(w, h, t)
+    lines = video_lines
+
+    def short_line(img):
+        out = lines(img)
+        out[4] = AxiStreamFrame(out[4].tdata[:-3], tuser=[0] * (w - 3))
+        return out
+
+    def long_line(img):
+        out = lines(img)
+        out[5] = AxiStreamFrame(out[5].tdata + b"\x10\x20", tuser=[0] * (w + 2))
+        return out
+
+    def no_tlast(img):  # lines 2 and 3 as one packet: no tlast at the end of line 2
+        out = lines(img)
+        merged = AxiStreamFrame(out[2].tdata + out[3].tdata, tuser=[0] * (2 * w))
+        return out[:2] + [merged] + out[4:]
+
+    def no_tuser(img):
+        return [AxiStreamFrame(p.tdata, tuser=[0] * w) for p in lines(img)]
+
+    def cut_short(img):
+        return lines(img)[: h - 3]
+
+    def tuser_mid_frame(img):
+        out = lines(img)
+        out[4] = AxiStreamFrame(out[4].tdata, tuser=[0] * 5 + [1] + [0] * (w - 6))
+        return out
+
+    def extra_lines(img):
+        return lines(img) + lines(img)[1:3]
+
+    def cut_mid_line(img):
+        out = lines(img)[:6]
+        out[5] = AxiStreamFrame(out[5].tdata[:7], tuser=[0] * 7)
+        return out
+
+    cases = [
+        (short_line, {"EOL_EARLY"}),
+        (long_line, {"EOL_LATE"}),
+        (no_tlast, {"EOL_LATE", "SOF_EARLY"}),  # the frame looks one line short
+        (no_tuser, {"SOF_MISSING"}),
+        (cut_short, {"SOF_EARLY"}),
+        (tuser_mid_frame, {"SOF_EARLY", "EOL_EARLY"}),
+        (extra_lines, {"SOF_MISSING"}),
+        (cut_mid_line, {"SOF_EARLY", "EOL_EARLY"}),
+    ]
+    only = os.environ.get("TB_CASES")
+    for make, bits in cases:
+        if only and make.__name__ not in only.split(","):
+            continue
+        bad = testimages.noise(tb.np_rng, w, h)
+        good = _good(tb, w, h)
+        before = len(tb.last_records)
+        await tb.send_lines(make(bad))
+        await tb.send_lines(lines(good))
+        await tb.idle_output()
+        frames = []
+        while not tb.sink.empty():
+            frames.append(tb.sink.recv_nowait())
+        # The malformed input gives at most two (well-formed) frames of junk.
+        assert 1 <= len(frames) <= 3, f"{make.__name__}: {len(frames)} frames out"
+        assert len(tb.last_records) - before == len(frames)
+        for frame in frames:
+            _, flags = decode(frame)
+            assert flags[-1] & 0b010 and not any(f & 0b010 for f in flags[:-1]), make.__name__
+        tb.check_frame(frames[-1], golden(good, t), f"good frame after {make.__name__}")
+        errors = await tb.errors()
+        assert errors == bits, f"{make.__name__}: STATUS errors {errors}, expected {bits}"
+        await tb.clear_status()
+        dut._log.info("%s: %s, then an exact frame", make.__name__, sorted(bits))
+    # A frame of the right size after all that, and the status stays clean.
+    await tb.check_frames([(_good(tb, w, h), t)], "final")
+    assert await tb.errors() == set()
+
+
+@cocotb.test()
+async def reset_mid_frame(dut):
+    """aresetn in the middle of a frame (records in flight): the registers
+    return to their reset values and the next frames are exact. Then a soft
+    reset in the middle of a frame: the open output frame is closed with
+    ABORTED, the rest of the input frame is discarded, the next frame is exact."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    w, h = min(MAX_WIDTH, 40), min(MAX_HEIGHT, 30)
+    busy = testimages.noise(tb.np_rng, w, h)
+    await tb.configure(w, h, 5)
+    await tb.send_lines(video_lines(busy))
+    while tb.sink.empty() and not tb.sink.active:
+        await RisingEdge(dut.aclk)
+    await ClockCycles(dut.aclk, 7)
+    await tb.reset(8)
+    tb.sink.clear()
+    assert await tb.read(regs.THRESHOLD) == 20
+    assert await tb.read(regs.WIDTH) == MAX_WIDTH
+    assert await tb.read(regs.FRAME_COUNT) == 0
+    frames = [(_good(tb, w, h), 12), (testimages.saturated(tb.np_rng, w, h), 30)]
+    await tb.check_frames(frames, "after aresetn")
+
+    # Soft reset while records of a frame are waiting in the output.
+    tb.set_stall(0.9)
+    await tb.configure(w, h, 5)
+    await tb.send_lines(video_lines(busy))
+    while not tb.sink.active:
+        await RisingEdge(dut.aclk)
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask | regs.CTRL_SOFT_RESET.mask)
+    tb.set_stall(STALL)
+    await tb.idle_output()
+    assert await tb.read(regs.CTRL) == regs.CTRL_ENABLE.mask
+    cut = tb.sink.recv_nowait()
+    assert tb.sink.empty()
+    records, flags = decode(cut)
+    assert flags[-1] == 0b110, f"soft reset: flags of the last record {flags[-1]:b}"
+    assert not any(flags[:-1])
+    want = golden(busy, 5)
+    assert records == want[: len(records)] and len(records) < len(want)
+    assert await tb.errors() == set()
+    frames = [(_good(tb, w, h), 12), (_good(tb, 17, 11), 3)]
+    await tb.check_frames(frames, "after soft reset")
+    assert await tb.errors() == set()
+
+
+@cocotb.test()
+async def interrupt_and_enable(dut):
+    """interrupt follows FRAME_DONE when IRQ_ENABLE is set, clears with it;
+    CTRL.ENABLE = 0 discards frames from their start of frame on."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    w, h, t = min(MAX_WIDTH, 24), min(MAX_HEIGHT, 10), 15
+    img = _good(tb, w, h)
+    await tb.check_frames([(img, t)], "irq off")
+    await ClockCycles(dut.aclk, 5)
+    assert regs.STATUS_FRAME_DONE.get(await tb.status())
+    assert dut.interrupt.value == 0
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask | regs.CTRL_IRQ_ENABLE.mask)
+    await ClockCycles(dut.aclk, 2)
+    assert dut.interrupt.value == 1
+    await tb.write(regs.STATUS, regs.STATUS_FRAME_DONE.mask)
+    await ClockCycles(dut.aclk, 2)
+    assert dut.interrupt.value == 0
+
+    # The interrupt rises a few clocks after the last record left.
+    sender = cocotb.start_soon(tb.send_frames([(img, t)]))
+    await tb.receive(1, 50 * w * h)
+    last = tb.last_records[-1]
+    while dut.interrupt.value == 0:
+        await RisingEdge(dut.aclk)
+        assert tb.cycle - last < 10, "no interrupt after the frame's last record"
+    dut._log.info("interrupt %d clocks after the last record", tb.cycle - last)
+    await sender
+    await tb.write(regs.STATUS, regs.STATUS_FRAME_DONE.mask)
+    await ClockCycles(dut.aclk, 2)
+    assert dut.interrupt.value == 0
+
+    # Disabled: frames are consumed and dropped; enabled again: processed.
+    await tb.write(regs.CTRL, regs.CTRL_IRQ_ENABLE.mask)
+    frames_before = await tb.read(regs.FRAME_COUNT)
+    await tb.send_lines(video_lines(img))
+    await tb.send_lines(video_lines(img))
+    await tb.idle_output()
+    assert tb.sink.empty() and dut.interrupt.value == 0
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask)
+    other = testimages.checkerboard(tb.np_rng, w, h)
+    await tb.check_frames([(other, 40), (img, t)], "enabled again")
+    await ClockCycles(dut.aclk, 5)
+    assert await tb.read(regs.FRAME_COUNT) == frames_before + 2
+    assert await tb.errors() == set()
+
+
+@cocotb.test()
+async def fifo_full(dut):
+    """A long stall of the corner output with a corner-rich image: the FIFO
+    fills, the video input is stalled (tready low), OVERFLOW is set, and no
+    record is lost or repeated."""
+    tb = await TB.create(dut, 0, 0)
+    await tb.reset()
+    w, h = MAX_WIDTH, min(MAX_HEIGHT, 40)
+    img = testimages.noise(tb.np_rng, w, h)
+    t = 0
+    want = golden(img, t)
+    assert len(want) > 2 * FIFO_DEPTH + 20, f"only {len(want)} corners"
+    tb.sink.pause = True
+    stalls = tb.input_stalls
+    sender = cocotb.start_soon(tb.send_frames([(img, t), (img, t)]))
+    await ClockCycles(dut.aclk, 3 * w * h)
+    assert tb.input_stalls - stalls > w, "the video input was not stalled"
+    assert "OVERFLOW" in await tb.errors()
+    dut._log.info("input stalled %d clocks with the output paused", tb.input_stalls - stalls)
+    tb.set_stall(0.5)
+    got = await tb.receive(2, 40 * w * h)
+    await sender
+    for frame in got:
+        tb.check_frame(frame, want, "after the FIFO filled")
+    await tb.clear_status()
+
+
+@cocotb.test()
+async def score_video(dut):
+    """m_axis_score: one 8-bit beat per pixel, the golden score saturated to
+    255, tuser on the first pixel, tlast on the last of each line."""
+    assert SCORE_VIDEO, "built without SCORE_VIDEO"
+    tb = await TB.create(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    frames = [
+        (testimages.saturated(rng, MAX_WIDTH, min(MAX_HEIGHT, 16)), 0),
+        (testimages.noise(rng, 23, 9), 5),
+        (testimages.blurred_noise(rng, 9, 7), 1),
+    ]
+    sender = cocotb.start_soon(tb.check_frames(frames, "with score video", opencv=False))
+    for img, t in frames:
+        h, w = img.shape
+        want = np.minimum(fast_maps(img, t, SCORE)[1], 255)
+        for y in range(h):
+            line = await tb._with_budget(
+                tb.score_sink.recv(compact=False), 50 * img.size, "score line"
+            )
+            assert len(line.tdata) == w, f"score line {y}: {len(line.tdata)} beats, want {w}"
+            assert list(line.tuser) == [int(y == 0)] + [0] * (w - 1), f"tuser of line {y}"
+            assert list(line.tdata) == [int(v) for v in want[y]], f"scores of line {y}"
+    await sender
+    assert tb.score_sink.empty()
+    peak = int(np.max(fast_maps(frames[0][0], 0, SCORE)[1]))
+    assert peak > (255 if SCORE == "sad" else 0), f"highest score {peak}: saturation not tested"
+
+
+@cocotb.test()
+async def throughput(dut):
+    """No idle, no back-pressure: one frame, then back-to-back frames; clocks
+    from the first pixel accepted to each frame's last record."""
+    tb = await TB.create(dut, 0, 0)
+    await tb.reset()
+    w, h = MAX_WIDTH, MAX_HEIGHT
+    n = int(os.environ.get("TB_FRAMES", "3"))
+    img = testimages.blurred_noise(tb.np_rng, w, h)
+    await tb.configure(w, h, 10)
+    results = {}
+    for count in (1, n):
+        tb.first_pixel = None
+        tb.last_records.clear()
+        for _ in range(count):
+            await tb.send_lines(video_lines(img))
+        got = await tb.receive(count, 4 * count * w * h + 10000)
+        for frame in got:
+            tb.check_frame(frame, golden(img, 10), "throughput")
+        clocks = [c - tb.first_pixel for c in tb.last_records]
+        results[count] = clocks
+        bound = 1.01 * count * w * h + 4 * w + 64
+        dut._log.info(
+            "%d x %dx%d: last records at %s clocks (W*H = %d, bound %.0f)",
+            count,
+            w,
+            h,
+            clocks,
+            w * h,
+            bound,
+        )
+        assert clocks[-1] <= bound, f"{clocks[-1]} clocks for {count} frames > {bound:.0f}"
+        if count > 1:
+            steps = [b - a for a, b in zip(clocks, clocks[1:], strict=False)]
+            assert all(s <= 1.01 * w * h for s in steps), f"frame intervals {steps}"
+        await ClockCycles(dut.aclk, 50)
+    Path(os.environ.get("TB_RESULTS", os.devnull)).write_text(json.dumps(results))

@@ -1,0 +1,89 @@
+"""pytest entry: fastnms_axi, the AXI top level (tb/top/axi_tb.py)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import testimages
+from harness import run_cocotb
+
+SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
+PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
+# (SCORE, NMS) variants of fastnms_core: add ("opencv", "region4") and
+# ("opencv", "region8") here once fastnms_core builds them.
+VARIANTS = [("opencv", "3x3"), ("sad", "3x3"), ("opencv", "none"), ("sad", "none")]
+
+
+@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=[f"{s}-{n}" for s, n in VARIANTS])
+def test_axi_frames(request, score, nms):
+    """Registers, generated images back to back with AXI-Lite reconfiguration,
+    the empty frame and the score video, with input idles and output stalls."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": score, "NMS": nms},
+        testcase="registers,generated_frames,empty_frame,score_video",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
+    )
+
+
+def test_axi_robustness(request):
+    """Malformed frames, aresetn and soft reset mid-frame, interrupt, enable,
+    the corner FIFO filling."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="malformed_then_good,reset_mid_frame,interrupt_and_enable,fifo_full",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
+    )
+
+
+def test_axi_throughput(request, tmp_path):
+    """Clocks per frame without idles or stalls: one 64x48 frame, then three
+    back to back."""
+    results = tmp_path / "throughput.json"
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="throughput",
+        name=request.node.nodeid,
+        env={"TB_FRAMES": "3", "TB_RESULTS": str(results)},
+    )
+    print("clocks to each frame's last record:", json.loads(results.read_text()))
+
+
+def test_axi_photos(request):
+    """Photograph crops through the top (no score video, default FIFO), against
+    the golden and cv2.FastFeatureDetector; the registers of this build."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**PHOTO, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="registers,real_images",
+        name=request.node.nodeid,
+        env={
+            "TB_IDLE": "0.05",
+            "TB_STALL": "0.2",
+            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:3]),
+        },
+    )
+
+
+@pytest.mark.slow
+def test_axi_throughput_1920(request, tmp_path):
+    """One 1920x1080 frame, then two back to back, at the default generics."""
+    results = tmp_path / "throughput.json"
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="throughput",
+        name=request.node.nodeid,
+        env={"TB_FRAMES": "2", "TB_RESULTS": str(results)},
+    )
+    print("clocks to each frame's last record:", json.loads(results.read_text()))
