@@ -189,6 +189,21 @@ architecture rtl of fastnms_nms_region_table is
 
   end function first_step;
 
+  -- A step whose label read was issued in the previous state skips its read state.
+  function launch (next_state : state_t) return state_t is
+  begin
+
+    if next_state = union_a then
+      return union_b;
+    elsif next_state = end_read then
+      return end_count;
+    elsif next_state = pass_read then
+      return pass_count;
+    end if;
+    return next_state;
+
+  end function launch;
+
 begin
 
   assert LABELS <= 2 ** LABEL_BITS
@@ -204,7 +219,7 @@ begin
     if rising_edge(clk) then
       if state = fetch then
         if ev_valid = '1' then
-          state <= first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= launch(first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof));
         end if;
       elsif state = new_run then
         if new_ok = '1' then
@@ -218,7 +233,7 @@ begin
       elsif state = union_cmp then
         region_b <= unsigned(lab_region);
         if unsigned(lab_region) = region_a then
-          state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= launch(first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof));
         else
           state <= union_read_b;
         end if;
@@ -234,7 +249,7 @@ begin
       elsif state = walk_next then
         cursor <= unsigned(lab_next);
         if unsigned(lab_next) = NONE then
-          state <= first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= launch(first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof));
         else
           state <= walk;
         end if;
@@ -244,7 +259,7 @@ begin
         region_a <= unsigned(lab_region);
         state    <= end_best;
       elsif state = end_best then
-        state <= first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+        state <= launch(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof));
       elsif state = pass_read then
         state <= pass_count;
       elsif state = pass_count then
@@ -351,6 +366,9 @@ begin
       lab_rd_addr <= ev_union_label;
     elsif state = union_cmp then
       reg_rd_addr <= region_a;
+      if first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
+        lab_rd_addr <= ev_pass_label;
+      end if;
     elsif state = union_read_b then
       reg_rd_addr <= region_b;
     elsif state = union_link then
@@ -373,6 +391,15 @@ begin
       region_addr <= cursor;
       region_data <= region_a;
       lab_rd_addr <= cursor;
+    elsif state = walk_next then
+      if first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
+        lab_rd_addr <= ev_pass_label;
+      end if;
+    elsif state = fetch then
+      -- The first step's label read (see launch).
+      if first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
+        lab_rd_addr <= ev_pass_label;
+      end if;
     elsif state = end_read then
       lab_rd_addr <= ev_label;
     elsif state = end_count then
@@ -383,6 +410,9 @@ begin
       best_we   <= '1';
       best_addr <= region_a;
       best_data <= larger(unsigned(reg_best), event_key);
+      if first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
+        lab_rd_addr <= ev_pass_label;
+      end if;
     elsif state = pass_read then
       lab_rd_addr <= ev_pass_label;
     elsif state = pass_count then
