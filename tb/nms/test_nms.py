@@ -1,6 +1,9 @@
 """pytest entry: the NMS blocks under GHDL against the golden model."""
 
+import json
+
 import pytest
+import testimages
 from harness import run_cocotb
 
 
@@ -28,4 +31,46 @@ def test_nms_region(request, connectivity, idle, stall):
         testcase="shapes,random_maps,empty_and_reset,throughput,idle_output",
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
+
+
+def _gravel() -> str:
+    """The CC0 gravel photograph (512x512): in ../shared/images or scikit-image's wheel."""
+    images = testimages.real_images()
+    return str(next((p for p in images if "gravel" in p.name), images[0]))
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_nms_region_photo(request, connectivity):
+    """A whole photograph's FAST output (gravel 512x512, t = 20, sad): records
+    equal to the golden, and at most 1.01 clocks per pixel (the flush pass
+    is 1/512 of it)."""
+    generics = {"MAX_WIDTH": 512, "MAX_HEIGHT": 512, "SCORE_BITS": 12, "CONNECTIVITY": connectivity}
+    run_cocotb(
+        "fastnms_nms_region",
+        "region_tb",
+        generics,
+        testcase="photo_maps",
+        name=request.node.nodeid,
+        env={
+            "TB_PHOTOS": json.dumps([[_gravel(), 20, "sad"]]),
+            "TB_MAX_CLOCKS_PER_PIXEL": "1.01",
+        },
+    )
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_nms_region_all_photos(request, connectivity):
+    """Every real photograph at thresholds 10 and 20 (sad) at MAX_WIDTH 1920:
+    records equal to the golden; clocks per pixel logged."""
+    photos = [[str(p), t, "sad"] for p in testimages.real_images() for t in (10, 20)]
+    generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE_BITS": 12, "CONNECTIVITY": connectivity}
+    run_cocotb(
+        "fastnms_nms_region",
+        "region_tb",
+        generics,
+        testcase="photo_maps",
+        name=request.node.nodeid,
+        env={"TB_PHOTOS": json.dumps(photos)},
     )
