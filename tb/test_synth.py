@@ -78,8 +78,9 @@ def test_axi_top_1920():
     """fastnms_axi at its default generics (1920x1080, opencv, 3x3, FIFO 512):
     no latches, no LUT RAM, the core's 8 BRAM18 plus one for the corner FIFO,
     and at most 4 logic levels on every path that starts or ends outside
-    fastnms_core. (Inside the core, its two window generators map to 5 levels
-    at MAX_HEIGHT 1080: fastnms_core alone gives the same.)"""
+    fastnms_core. One more is tolerated inside the core: its two window
+    generators have mapped to 5 levels at MAX_HEIGHT 1080 (fastnms_core alone
+    at 1920x1080 does too), depending on how abc maps the whole design."""
     netlist, messages = ghdl_synth("fastnms_axi")
     assert "latch" not in messages.lower(), messages
     cells = yosys_xc7(netlist, "fastnms_axi")

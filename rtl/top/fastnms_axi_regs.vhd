@@ -296,10 +296,11 @@ begin
       w_above_h <= w_low_h or w_high;
 
       if rst = '1' then
-        w_state <= w_idle;
-        aw_full <= '0';
-        w_full  <= '0';
-        b_valid <= '0';
+        w_state  <= w_idle;
+        aw_full  <= '0';
+        aw_index <= (others => '0'); -- decoded on every clock
+        w_full   <= '0';
+        b_valid  <= '0';
       end if;
     end if;
 
@@ -345,9 +346,10 @@ begin
       end if;
 
       if rst = '1' then
-        r_state <= r_idle;
-        ar_full <= '0';
-        r_valid <= '0';
+        r_state  <= r_idle;
+        ar_full  <= '0';
+        ar_index <= (others => '0'); -- decoded on every clock
+        r_valid  <= '0';
       end if;
     end if;
 

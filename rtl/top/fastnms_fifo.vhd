@@ -40,14 +40,17 @@ architecture rtl of fastnms_fifo is
   constant ADDR_BITS : positive := clog2(DEPTH);
 
   -- Pointers with one wrap bit: equal when empty, equal but for the wrap
-  -- bit when full. wr_next is wr_ptr + 1, rd_next rd_ptr + 1.
-  signal wr_ptr  : unsigned(ADDR_BITS downto 0);
-  signal wr_next : unsigned(ADDR_BITS downto 0);
-  signal rd_ptr  : unsigned(ADDR_BITS downto 0);
-  signal rd_next : unsigned(ADDR_BITS downto 0);
+  -- bit when full. wr_next is wr_ptr + 1, rd_next rd_ptr + 1, rd_next2
+  -- rd_ptr + 2 (the flags are computed one clock ahead from them).
+  signal wr_ptr   : unsigned(ADDR_BITS downto 0);
+  signal wr_next  : unsigned(ADDR_BITS downto 0);
+  signal rd_ptr   : unsigned(ADDR_BITS downto 0);
+  signal rd_next  : unsigned(ADDR_BITS downto 0);
+  signal rd_next2 : unsigned(ADDR_BITS downto 0);
 
   signal empty   : std_logic; -- no word in the RAM (a register)
-  signal single  : std_logic; -- one word in the RAM
+  signal single  : std_logic; -- one word in the RAM (a register)
+  signal double  : std_logic; -- two words in the RAM
   signal full    : std_logic; -- 2**ADDR_BITS words in the RAM
   signal last    : std_logic; -- 2**ADDR_BITS - 1 words in the RAM
   signal ready   : std_logic;
@@ -62,7 +65,7 @@ architecture rtl of fastnms_fifo is
 
 begin
 
-  single <= to_sl(wr_ptr = rd_next);
+  double <= to_sl(wr_ptr = rd_next2);
   full   <= to_sl(wr_ptr(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
                   wr_ptr(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
   last   <= to_sl(wr_next(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
@@ -85,15 +88,25 @@ begin
       end if;
 
       if rst = '1' then
-        rd_ptr  <= (others => '0');
-        rd_next <= to_unsigned(1, rd_next'length);
+        rd_ptr   <= (others => '0');
+        rd_next  <= to_unsigned(1, rd_next'length);
+        rd_next2 <= to_unsigned(2, rd_next2'length);
       elsif read = '1' then
-        rd_ptr  <= rd_next;
-        rd_next <= rd_next + 1;
+        rd_ptr   <= rd_next;
+        rd_next  <= rd_next2;
+        rd_next2 <= rd_next2 + 1;
       end if;
 
       ready <= not (full or (last and write));
+      -- The level after this clock: the old one, +1 on a write, -1 on a read.
       empty <= (empty or (read and single)) and not write;
+      if write = read then
+        single <= single;
+      elsif write = '1' then
+        single <= empty;
+      else
+        single <= double;
+      end if;
       if read_en = '1' then
         q_valid <= not empty;
       end if;
@@ -102,6 +115,7 @@ begin
       if rst = '1' then
         ready   <= '0';
         empty   <= '1';
+        single  <= '0';
         q_valid <= '0';
         busy    <= '0';
       end if;

@@ -223,6 +223,11 @@ class TB:
         names = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
         return {n for n in names if getattr(regs, f"STATUS_{n}").get(word)}
 
+    async def input_errors(self) -> set[str]:
+        """The error bits of the video input (OVERFLOW excluded: it only says
+        that the corner output stalled the pipeline)."""
+        return await self.errors() - {"OVERFLOW"}
+
     async def clear_status(self) -> None:
         await self.write(regs.STATUS, 0xFFFFFFFE)
         assert await self.status() & ~1 == 0
@@ -283,6 +288,9 @@ class TB:
                 f"{label}: expected the empty-frame record, got {records} flags {flags}"
             )
             return
+        if NMS.startswith("region"):
+            # The region NMS sends a region's record when the region closes.
+            records = sorted(records, key=lambda r: (r[1], r[0]))
         assert records == want, mismatch(records, want, label)
         assert flags == [0] * (len(want) - 1) + [0b010], f"{label}: flags {flags}"
 
@@ -301,7 +309,7 @@ class TB:
             self.check_frame(frame, want, name + " vs golden")
             if opencv and SCORE == "opencv" and NMS == "3x3":
                 cv = opencv_keypoints(img, t)
-                records, _ = decode(frame)
+                records, _ = decode(frame)  # 3x3: in raster order
                 assert records == (cv or [(0, 0, 0)]), mismatch(records, cv, name + " vs cv2.FAST")
             self.dut._log.info("%s: %d corners, equal", name, len(want))
 
@@ -411,7 +419,7 @@ async def generated_frames(dut):
     assert await tb.read(regs.FRAME_COUNT) == len(frames)
     img, t = frames[-1]
     assert await tb.read(regs.CORNER_COUNT) == len(golden(img, t))
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
     assert tb.score_without_video == 0
 
 
@@ -424,7 +432,7 @@ async def real_images(dut):
     await tb.reset()
     frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
     await tb.check_frames(frames, "photo")
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
 
 
 @cocotb.test()
@@ -517,13 +525,15 @@ async def malformed_then_good(dut):
             _, flags = decode(frame)
             assert flags[-1] & 0b010 and not any(f & 0b010 for f in flags[:-1]), make.__name__
         tb.check_frame(frames[-1], golden(good, t), f"good frame after {make.__name__}")
-        errors = await tb.errors()
+        errors = await tb.input_errors()
         assert errors == bits, f"{make.__name__}: STATUS errors {errors}, expected {bits}"
         await tb.clear_status()
-        dut._log.info("%s: %s, then an exact frame", make.__name__, sorted(bits))
+        dut._log.info(
+            "%s: %s, %d frame(s) out, the last one exact", make.__name__, sorted(bits), len(frames)
+        )
     # A frame of the right size after all that, and the status stays clean.
     await tb.check_frames([(_good(tb, w, h), t)], "final")
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
 
 
 @cocotb.test()
@@ -566,10 +576,10 @@ async def reset_mid_frame(dut):
     assert not any(flags[:-1])
     want = golden(busy, 5)
     assert records == want[: len(records)] and len(records) < len(want)
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
     frames = [(_good(tb, w, h), 12), (_good(tb, 17, 11), 3)]
     await tb.check_frames(frames, "after soft reset")
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
 
 
 @cocotb.test()
@@ -616,7 +626,7 @@ async def interrupt_and_enable(dut):
     await tb.check_frames([(other, 40), (img, t)], "enabled again")
     await ClockCycles(dut.aclk, 5)
     assert await tb.read(regs.FRAME_COUNT) == frames_before + 2
-    assert await tb.errors() == set()
+    assert await tb.input_errors() == set()
 
 
 @cocotb.test()
@@ -637,7 +647,11 @@ async def fifo_full(dut):
     await ClockCycles(dut.aclk, 3 * w * h)
     assert tb.input_stalls - stalls > w, "the video input was not stalled"
     assert "OVERFLOW" in await tb.errors()
-    dut._log.info("input stalled %d clocks with the output paused", tb.input_stalls - stalls)
+    dut._log.info(
+        "%d records per frame; input stalled %d clocks with the output paused",
+        len(want),
+        tb.input_stalls - stalls,
+    )
     tb.set_stall(0.5)
     got = await tb.receive(2, 40 * w * h)
     await sender
@@ -712,4 +726,6 @@ async def throughput(dut):
             steps = [b - a for a, b in zip(clocks, clocks[1:], strict=False)]
             assert all(s <= 1.01 * w * h for s in steps), f"frame intervals {steps}"
         await ClockCycles(dut.aclk, 50)
+    # Without back-pressure the corner FIFO never fills.
+    assert await tb.errors() == set()
     Path(os.environ.get("TB_RESULTS", os.devnull)).write_text(json.dumps(results))

@@ -10,9 +10,15 @@ from harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
-# (SCORE, NMS) variants of fastnms_core: add ("opencv", "region4") and
-# ("opencv", "region8") here once fastnms_core builds them.
-VARIANTS = [("opencv", "3x3"), ("sad", "3x3"), ("opencv", "none"), ("sad", "none")]
+# (SCORE, NMS) variants of fastnms_core; one line per variant.
+VARIANTS = [
+    ("opencv", "3x3"),
+    ("sad", "3x3"),
+    ("opencv", "none"),
+    ("sad", "none"),
+    ("sad", "region4"),
+    ("sad", "region8"),
+]
 
 
 @pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=[f"{s}-{n}" for s, n in VARIANTS])
