@@ -13,7 +13,8 @@ IMAGE   ?= $(shell [ -x $(PY) ] && $(PY) -c 'import os, skimage.data as d; print
 DEMO_PNG ?= build/demo/corners.png
 DEMO_CSV ?= build/demo/corners.csv
 
-.PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean
+.PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean \
+	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado
 
 help:
 	@echo "make demo       golden model on a real photograph, writes $(DEMO_PNG)"
@@ -22,6 +23,10 @@ help:
 	@echo "make sim        cocotb regression only"
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
 	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector and core (yosys, xc7)"
+	@echo "make fusesoc-sim  FuseSoC + GHDL smoke test of fastnms.core"
+	@echo "make vivado-ip    package the Vivado IP into build/vivado/ip (needs Vivado)"
+	@echo "make vivado-bd    ZedBoard/ZC702 block design in build/vivado/zc7z20 (needs Vivado; BD_ARGS=--impl for the bitstream)"
+	@echo "make vivado-ooc   out-of-context synthesis + implementation at 150 MHz, reports in build/vivado/ooc (needs Vivado)"
 
 # ---- set-up ----------------------------------------------------------------
 setup: $(STAMP) check-ghdl
@@ -79,9 +84,31 @@ synth-report: setup
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
 	$(VENV)/bin/ruff format --check --quiet .
-	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd 2>&1) || \
+	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd tb/vhdl/*.vhd 2>&1) || \
 	  { echo "$$out"; echo "make: vsg found style errors (fix with: $(VENV)/bin/vsg -c vsg.yaml --fix -f FILE)"; exit 1; }
 	@echo "lint: ruff and vsg clean"
+
+# ---- FuseSoC and Vivado ----------------------------------------------------
+fusesoc-sim: setup
+	$(VENV)/bin/fusesoc --cores-root . run --work-root build/fusesoc/sim --target sim ::fastnms:0.1.0
+
+# Vivado is not installed by `make setup`: it must be on PATH (settings64.sh).
+VIVADO   ?= vivado
+BD_ARGS  ?=
+OOC_ARGS ?=
+VIVADO_BATCH = $(VIVADO) -mode batch -nojournal -nolog
+
+check-vivado:
+	@command -v $(VIVADO) >/dev/null || { echo "make: Vivado is not on PATH (source <Vivado>/settings64.sh)"; exit 1; }
+
+vivado-ip: check-vivado
+	$(VIVADO_BATCH) -source vivado/package_ip.tcl
+
+vivado-bd: vivado-ip
+	$(VIVADO_BATCH) -source vivado/create_bd_zc7z20.tcl $(if $(BD_ARGS),-tclargs $(BD_ARGS))
+
+vivado-ooc: check-vivado
+	$(VIVADO_BATCH) -source vivado/synth_ooc.tcl $(if $(OOC_ARGS),-tclargs $(OOC_ARGS))
 
 clean:
 	rm -rf build sim_build .pytest_cache .ruff_cache
