@@ -1,7 +1,7 @@
 """The `fastnms` command line.
 
-Subcommands are registered in SUBCOMMANDS; each gets its own sub-parser and handler, so
-`sim` and `compare` can be added next to `golden` without touching the rest. User errors
+Subcommands (`golden`, `sim`, `compare`) are registered in SUBCOMMANDS; each gets its own
+sub-parser and handler. User errors
 (bad arguments, unreadable images, unwritable outputs) end as one `fastnms: error: ...`
 line on stderr with exit status 2 and leave no output file behind.
 """
@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import json
 import os
 import secrets
 import sys
@@ -21,6 +22,7 @@ import numpy as np
 
 from .image import ImageError, load_grey
 from .model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
+from .sim import MAX_HEIGHT, MAX_WIDTH, MIN_SIZE, SimError, SimResult, check_size, run_rtl
 
 PROG = "fastnms"
 EXIT_USAGE = 2
@@ -171,16 +173,8 @@ def png_bytes(canvas: np.ndarray) -> bytes:
 # ---- subcommands -----------------------------------------------------------------------
 
 
-def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    p = sub.add_parser(
-        "golden",
-        help="run the golden model on an image",
-        description=(
-            "Detect FAST-9/16 corners with the Python golden model. Colour images are "
-            "converted to grey as OpenCV does: cv2.imread (8-bit BGR) then "
-            "cv2.cvtColor(COLOR_BGR2GRAY). Prints one summary line."
-        ),
-    )
+def add_detection_args(p: argparse.ArgumentParser) -> None:
+    """IMAGE, threshold, score, NMS and the output files, shared by every subcommand."""
     p.add_argument("image", metavar="IMAGE", help="input image (any format OpenCV reads)")
     p.add_argument(
         "-t",
@@ -204,33 +198,101 @@ def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     )
     p.add_argument("--csv", metavar="OUT.csv", help="write the corners as CSV: x,y,score")
     p.add_argument("--png", metavar="OUT.png", help="write the image with coloured corner boxes")
+
+
+GREY_NOTE = (
+    "Colour images are converted to grey as OpenCV does: cv2.imread (8-bit BGR) then "
+    "cv2.cvtColor(COLOR_BGR2GRAY)."
+)
+
+
+def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "golden",
+        help="run the golden model on an image",
+        description=(
+            f"Detect FAST-9/16 corners with the Python golden model. {GREY_NOTE} "
+            "Prints one summary line."
+        ),
+    )
+    add_detection_args(p)
     return p
 
 
-def run_golden(args: argparse.Namespace) -> int:
-    outputs = [path for path in (args.csv, args.png) if path]
-    if args.csv and args.png and os.path.abspath(args.csv) == os.path.abspath(args.png):
-        raise UsageError(f"--csv and --png name the same file: {args.csv}")
-    for path in outputs:
-        check_output_path(path)
+def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "sim",
+        help="run the RTL (fastnms_axi under GHDL) on an image",
+        description=(
+            "Simulate the IP's top level, fastnms_axi, under GHDL (cocotb and cocotbext-axi "
+            "drive its AXI4-Lite and AXI4-Stream ports) and write the corners it emitted. "
+            f"{GREY_NOTE} Images from {MIN_SIZE}x{MIN_SIZE} to {MAX_WIDTH}x{MAX_HEIGHT}. "
+            "Needs the source tree and GHDL. Prints cycles, cycles per pixel and wall time."
+        ),
+    )
+    add_detection_args(p)
+    p.add_argument(
+        "--json",
+        metavar="OUT.json",
+        help="write width, height, threshold, score, nms, corners, cycles, wall_seconds",
+    )
+    return p
+
+
+def add_compare_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "compare",
+        help="run the RTL and the golden model on an image and compare them",
+        description=(
+            "Run `fastnms sim` and the golden model on IMAGE (and, for opencv + 3x3, "
+            "cv2.FastFeatureDetector) and compare the sets of (x, y, score). Prints the "
+            "first differences; exit status 1 on any difference, 0 when identical. "
+            "--csv and --png write the RTL's corners."
+        ),
+    )
+    add_detection_args(p)
+    return p
+
+
+def check_outputs(*paths: str | None) -> None:
+    given = [os.path.abspath(p) for p in paths if p]
+    if len(set(given)) != len(given):
+        raise UsageError("two output options name the same file")
+    for path in paths:
+        if path:
+            check_output_path(path)
+
+
+def load_input(path: str) -> np.ndarray:
     try:
-        img = load_grey(args.image)
+        return load_grey(path)
     except ImageError as e:
         raise UsageError(str(e)) from None
 
-    start = time.perf_counter()
-    records = detect(img, args.threshold, args.score, args.nms)
-    elapsed = time.perf_counter() - start
 
+def write_outputs(img: np.ndarray, records: np.ndarray, args: argparse.Namespace, extra=()) -> None:
+    """--csv, --png and any (path, bytes) in extra, all or none."""
     try:
         with output_set() as out:
             if args.csv:
                 out.write(args.csv, csv_bytes(records))
             if args.png:
                 out.write(args.png, png_bytes(overlay(img, records)))
+            for path, data in extra:
+                out.write(path, data)
     except OSError as e:
         where = f"{e.filename}: " if e.filename else ""
         raise UsageError(f"cannot write output: {where}{e.strerror or e}") from None
+
+
+def run_golden(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png)
+    img = load_input(args.image)
+
+    start = time.perf_counter()
+    records = detect(img, args.threshold, args.score, args.nms)
+    elapsed = time.perf_counter() - start
+    write_outputs(img, records, args)
 
     h, w = img.shape
     print(
@@ -240,16 +302,131 @@ def run_golden(args: argparse.Namespace) -> int:
     return 0
 
 
+class Progress:
+    """One status line on stderr, rewritten in place, once the simulation has taken
+    more than a few seconds."""
+
+    AFTER_SECONDS = 3.0
+
+    def __init__(self) -> None:
+        self.shown = False
+
+    def __call__(self, rows_in: int, rows: int, seconds: float) -> None:
+        if seconds < self.AFTER_SECONDS:
+            return
+        pct = 100 * rows_in // max(1, rows)
+        print(
+            f"\r{PROG} sim: {rows_in}/{rows} lines in ({pct} %), {seconds:.0f} s",
+            end="",
+            file=sys.stderr,
+            flush=True,
+        )
+        self.shown = True
+
+    def done(self) -> None:
+        if self.shown:
+            print(file=sys.stderr)
+
+
+def simulate(img: np.ndarray, args: argparse.Namespace) -> SimResult:
+    why = check_size(img)
+    if why:
+        raise UsageError(f"{args.image}: {why}")
+    progress = Progress()
+    try:
+        return run_rtl(img, args.threshold, args.score, args.nms, progress)
+    except SimError as e:
+        raise UsageError(str(e)) from None
+    finally:
+        progress.done()
+
+
+def sim_summary(name: str, img: np.ndarray, args: argparse.Namespace, sim: SimResult) -> str:
+    h, w = img.shape
+    return (
+        f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}: "
+        f"{sim.records.shape[0]} corners; {sim.cycles} cycles, "
+        f"{sim.cycles / (w * h):.4f} cycles per pixel; {sim.wall_seconds:.1f} s wall"
+    )
+
+
+def run_sim(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png, args.json)
+    img = load_input(args.image)
+    sim = simulate(img, args)
+    h, w = img.shape
+    extra = []
+    if args.json:
+        summary = {
+            "width": w,
+            "height": h,
+            "threshold": args.threshold,
+            "score": args.score,
+            "nms": args.nms,
+            "corners": int(sim.records.shape[0]),
+            "cycles": sim.cycles,
+            "cycles_per_pixel": sim.cycles / (w * h),
+            "wall_seconds": sim.wall_seconds,
+        }
+        extra.append((args.json, (json.dumps(summary, indent=2) + "\n").encode("ascii")))
+    write_outputs(img, sim.records, args, extra)
+    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    return 0
+
+
+def differences(got: np.ndarray, want: np.ndarray, limit: int = 10) -> list[str]:
+    """The first records (sorted by y, x) only in one of the two sets."""
+    a = {tuple(int(v) for v in r) for r in got}
+    b = {tuple(int(v) for v in r) for r in want}
+    only = sorted(
+        [(r, "rtl only") for r in a - b] + [(r, "reference only") for r in b - a],
+        key=lambda item: (item[0][1], item[0][0]),
+    )
+    return [f"  ({x}, {y}, {s}): {where}" for (x, y, s), where in only[:limit]]
+
+
+def opencv_records(img: np.ndarray, threshold: int) -> np.ndarray:
+    fast = cv2.FastFeatureDetector_create(threshold, True, cv2.FAST_FEATURE_DETECTOR_TYPE_9_16)
+    points = [(int(k.pt[0]), int(k.pt[1]), int(k.response)) for k in fast.detect(img)]
+    return np.array(sorted(points, key=lambda p: (p[1], p[0])), dtype=np.int64).reshape(-1, 3)
+
+
+def run_compare(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png)
+    img = load_input(args.image)
+    sim = simulate(img, args)
+    references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
+    if args.score == "opencv" and args.nms == "3x3":
+        references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
+    write_outputs(img, sim.records, args)
+    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    status = 0
+    for name, want in references.items():
+        diff = differences(sim.records, want)
+        if diff:
+            status = 1
+            print(f"rtl vs {name}: DIFFERENT ({sim.records.shape[0]} vs {want.shape[0]} corners)")
+            print("\n".join(diff))
+        else:
+            print(f"rtl vs {name}: identical ({want.shape[0]} corners)")
+    return status
+
+
 Handler = Callable[[argparse.Namespace], int]
 SUBCOMMANDS: dict[str, tuple[Callable[..., argparse.ArgumentParser], Handler]] = {
     "golden": (add_golden_parser, run_golden),
+    "sim": (add_sim_parser, run_sim),
+    "compare": (add_compare_parser, run_compare),
 }
 
 
 def build_parser() -> ArgumentParser:
     parser = ArgumentParser(
         prog=PROG,
-        description="FAST-9/16 corner detection with non-maxima suppression: golden model.",
+        description=(
+            "FAST-9/16 corner detection with non-maxima suppression: the golden model, the "
+            "RTL in simulation, and the comparison of the two."
+        ),
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, (add_parser, handler) in SUBCOMMANDS.items():
