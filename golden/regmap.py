@@ -4,8 +4,10 @@
     python -m fastnms.regmap --check   exit 1 (and name them) if any is out of date
 
 Generated: the VHDL package rtl/top/fastnms_regs_pkg.vhd, the C header
-sw/fastnms_regs.h, the Python constants golden/regs.py (`fastnms.regs`) and the
-register table in docs/top.md between the `regmap:begin` and `regmap:end` markers.
+sw/fastnms_regs.h, the Python constants golden/regs.py (`fastnms.regs`), and in
+docs/top.md the register table (between the `regmap:begin` and `regmap:end`
+markers) and the corner-record table (`record:begin`, `record:end`). The TOML
+describes the registers and the 64-bit corner record of m_axis_corners.
 Paths are relative to the repository (the folder above this package's source).
 """
 

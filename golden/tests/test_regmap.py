@@ -3,6 +3,10 @@ and the source is consistent."""
 
 from __future__ import annotations
 
+import shutil
+import subprocess
+
+import pytest
 from fastnms import regmap, regs
 
 
@@ -50,3 +54,34 @@ def test_docs_table_lists_every_field():
         assert f"`{reg.name}`" in table
         for fld in reg.fields:
             assert f"`{fld.name}` | {fld.bits} | {fld.access}" in table
+
+
+def test_c_header_compiles_and_agrees(tmp_path):
+    """sw/fastnms_regs.h compiles as C99 without warnings, and its offsets,
+    masks and record fields equal the Python constants."""
+    compiler = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if compiler is None:
+        pytest.skip("no C compiler")
+    checks = []
+    for name, reg in regs.REGISTERS.items():
+        checks.append((f"FASTNMS_{name}_OFFSET", reg.offset))
+        for fname, fld in reg.fields.items():
+            checks.append((f"FASTNMS_{name}_{fname}_MASK", fld.mask))
+            checks.append((f"FASTNMS_{name}_{fname}_SHIFT", fld.lsb))
+    for fname in ("X", "Y", "SCORE", "EMPTY", "LAST", "ABORTED"):
+        fld = getattr(regs, f"REC_{fname}")
+        checks.append((f"FASTNMS_REC_{fname}_MASK", fld.mask))
+    source = tmp_path / "check.c"
+    source.write_text(
+        '#include "fastnms_regs.h"\n'
+        + "".join(f"#if {macro} != {value}ull\n#error {macro}\n#endif\n" for macro, value in checks)
+        + "int main(void) { return 0; }\n"
+    )
+    include = regmap.ROOT / "sw"
+    proc = subprocess.run(
+        [compiler, "-std=c99", "-Wall", "-Wextra", "-pedantic", "-Werror", f"-I{include}",
+         "-fsyntax-only", str(source)],
+        capture_output=True,
+        text=True,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr

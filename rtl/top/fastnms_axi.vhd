@@ -204,15 +204,16 @@ architecture rtl of fastnms_axi is
   signal cfg_threshold : unsigned(7 downto 0);
 
   -- Video in: the input skid buffer, then the gate.
-  signal v_in    : std_logic_vector(9 downto 0);
-  signal v_out   : std_logic_vector(9 downto 0);
-  signal v_valid : std_logic;
-  signal v_ready : std_logic;
-  signal c_valid : std_logic; -- into the core
-  signal c_ready : std_logic;
-  signal c_data  : std_logic_vector(7 downto 0);
-  signal c_sof   : std_logic;
-  signal c_eol   : std_logic;
+  signal v_in       : std_logic_vector(9 downto 0);
+  signal v_out      : std_logic_vector(9 downto 0);
+  signal v_valid    : std_logic;
+  signal v_in_ready : std_logic;
+  signal v_ready    : std_logic;
+  signal c_valid    : std_logic; -- into the core
+  signal c_ready    : std_logic;
+  signal c_data     : std_logic_vector(7 downto 0);
+  signal c_sof      : std_logic;
+  signal c_eol      : std_logic;
 
   -- Core output.
   signal k_valid    : std_logic;
@@ -354,6 +355,9 @@ begin
   -- ---- video in ----------------------------------------------------------------
 
   v_in <= s_axis_video_tuser & s_axis_video_tlast & s_axis_video_tdata;
+  -- No tready during reset (the synchronised one ends up to 3 clocks after
+  -- aresetn): a pixel taken then would be lost.
+  s_axis_video_tready <= v_in_ready and not rst;
 
   input_buffer : entity work.fastnms_skid_buffer
     generic map (
@@ -363,7 +367,7 @@ begin
       clk       => aclk,
       rst       => rst,
       in_valid  => s_axis_video_tvalid,
-      in_ready  => s_axis_video_tready,
+      in_ready  => v_in_ready,
       in_data   => v_in,
       out_valid => v_valid,
       out_ready => v_ready,

@@ -240,8 +240,9 @@ begin
 
   -- ---- write channel ---------------------------------------------------------
 
-  s_axi_awready <= not aw_full;
-  s_axi_wready  <= not w_full;
+  -- No ready during reset: a channel taken then would be lost.
+  s_axi_awready <= not aw_full and not rst;
+  s_axi_wready  <= not w_full and not rst;
   s_axi_bvalid  <= b_valid;
   s_axi_bresp   <= b_resp;
   do_write      <= to_sl(w_state = w_execute) and w_ok;
@@ -308,7 +309,7 @@ begin
 
   -- ---- read channel ----------------------------------------------------------
 
-  s_axi_arready <= not ar_full;
+  s_axi_arready <= not ar_full and not rst;
   s_axi_rvalid  <= r_valid;
   s_axi_rdata   <= r_data;
   s_axi_rresp   <= r_resp;

@@ -1,15 +1,23 @@
 -- First-word-fall-through FIFO on one fastnms_ram_sdp, with registered
 -- readies on both sides.
 --
--- The RAM holds 2**clog2(DEPTH) words (DEPTH rounded up to a power of two);
--- three more words sit in the output stage (the RAM's read register and a
--- skid buffer), so at least DEPTH + 3 words fit. in_ready is a register: it
--- drops when the RAM is full, or one word before when a word is written on
--- that clock (one clock of caution that costs no throughput unless the FIFO
--- is full). One word in and one out per clock. A word written into an empty
--- FIFO is presented at the output two clocks after the clock it was written on.
+-- The RAM has 2**clog2(DEPTH) words (DEPTH rounded up to a power of two, at
+-- least 4); three more words sit in the output stage (the RAM's read register
+-- and a skid buffer), so more than DEPTH words fit. One word in and one out
+-- per clock. A word written into an empty FIFO
+-- is presented at the output three clocks after the clock it was written on.
 --
--- `busy` is '1' while any word is inside (one clock late).
+-- Logic depth: the pointers only address the RAM, and no two registers are
+-- ever compared. The flags come from a level register compared with
+-- constants; the level is counted one clock late, from the registered write
+-- and read of the clock before (so its update is an adder with a registered
+-- operand: one LUT and the carry chain). Both flags are conservative for that
+-- clock: a word is read only if it is in the RAM even without the last
+-- clock's write (so a word written into an empty FIFO waits one more clock),
+-- and in_ready drops while the RAM may have fewer than three free words.
+--
+-- Up to 2048 words the level has at most 12 bits and the logic at most 4
+-- levels. `busy` is '1' while any word is inside (one clock late).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -37,26 +45,21 @@ end entity fastnms_fifo;
 
 architecture rtl of fastnms_fifo is
 
-  constant ADDR_BITS : positive := clog2(DEPTH);
+  constant ADDR_BITS : positive := maximum(2, clog2(DEPTH));
+  constant WORDS     : positive := 2 ** ADDR_BITS;
 
-  -- Pointers with one wrap bit: equal when empty, equal but for the wrap
-  -- bit when full. wr_next is wr_ptr + 1, rd_next rd_ptr + 1, rd_next2
-  -- rd_ptr + 2 (the flags are computed one clock ahead from them).
-  signal wr_ptr   : unsigned(ADDR_BITS downto 0);
-  signal wr_next  : unsigned(ADDR_BITS downto 0);
-  signal rd_ptr   : unsigned(ADDR_BITS downto 0);
-  signal rd_next  : unsigned(ADDR_BITS downto 0);
-  signal rd_next2 : unsigned(ADDR_BITS downto 0);
-
-  signal empty   : std_logic; -- no word in the RAM (a register)
-  signal single  : std_logic; -- one word in the RAM (a register)
-  signal double  : std_logic; -- two words in the RAM
-  signal full    : std_logic; -- 2**ADDR_BITS words in the RAM
-  signal last    : std_logic; -- 2**ADDR_BITS - 1 words in the RAM
+  signal wr_ptr : unsigned(ADDR_BITS - 1 downto 0);
+  signal rd_ptr : unsigned(ADDR_BITS - 1 downto 0);
+  -- Words in the RAM one clock ago, and that clock's write and read.
+  signal level   : unsigned(ADDR_BITS downto 0);
+  signal wrote   : std_logic;
+  signal took    : std_logic;
+  signal delta   : unsigned(ADDR_BITS downto 0); -- wrote - took
+  signal filled  : std_logic;                    -- a word is in the RAM for sure
   signal ready   : std_logic;
   signal write   : std_logic;
-  signal read_en : std_logic; -- the RAM's read register advances
-  signal read    : std_logic; -- ... and takes a word
+  signal read_en : std_logic;                    -- the RAM's read register advances
+  signal read    : std_logic;                    -- ... and takes a word
 
   signal q_valid     : std_logic;
   signal q_data      : std_logic_vector(WIDTH - 1 downto 0);
@@ -65,57 +68,54 @@ architecture rtl of fastnms_fifo is
 
 begin
 
-  double <= to_sl(wr_ptr = rd_next2);
-  full   <= to_sl(wr_ptr(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
-                  wr_ptr(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
-  last   <= to_sl(wr_next(ADDR_BITS) /= rd_ptr(ADDR_BITS) and
-                  wr_next(ADDR_BITS - 1 downto 0) = rd_ptr(ADDR_BITS - 1 downto 0));
+  -- level - took >= 1: level >= 2, or level = 1 without a read.
+  filled <= (or level(ADDR_BITS downto 1)) or (level(0) and not took);
 
   write   <= in_valid and ready;
   read_en <= not q_valid or skid_ready;
-  read    <= read_en and not empty;
+  read    <= read_en and filled;
 
   pointers : process (clk) is
   begin
 
     if rising_edge(clk) then
       if rst = '1' then
-        wr_ptr  <= (others => '0');
-        wr_next <= to_unsigned(1, wr_next'length);
+        wr_ptr <= (others => '0');
       elsif write = '1' then
-        wr_ptr  <= wr_next;
-        wr_next <= wr_next + 1;
+        wr_ptr <= wr_ptr + 1;
       end if;
 
       if rst = '1' then
-        rd_ptr   <= (others => '0');
-        rd_next  <= to_unsigned(1, rd_next'length);
-        rd_next2 <= to_unsigned(2, rd_next2'length);
+        rd_ptr <= (others => '0');
       elsif read = '1' then
-        rd_ptr   <= rd_next;
-        rd_next  <= rd_next2;
-        rd_next2 <= rd_next2 + 1;
+        rd_ptr <= rd_ptr + 1;
       end if;
 
-      ready <= not (full or (last and write));
-      -- The level after this clock: the old one, +1 on a write, -1 on a read.
-      empty <= (empty or (read and single)) and not write;
-      if write = read then
-        single <= single;
-      elsif write = '1' then
-        single <= empty;
+      -- delta: +1, -1 or 0, a register, so that the adder has one LUT.
+      wrote <= write;
+      took  <= read;
+      if read = '1' and write = '0' then
+        delta <= (others => '1');
+      elsif write = '1' and read = '0' then
+        delta <= to_unsigned(1, delta'length);
       else
-        single <= double;
+        delta <= (others => '0');
       end if;
+      level <= level + delta;
+      -- Room for the words of this clock and the next: level <= WORDS - 3
+      -- (WORDS is a power of two, so level >= WORDS - 2 is a gate, not a compare).
+      ready <= not (level(ADDR_BITS) or (and level(ADDR_BITS - 1 downto 1)));
       if read_en = '1' then
-        q_valid <= not empty;
+        q_valid <= filled;
       end if;
-      busy <= not empty or q_valid or out_valid_i;
+      busy <= (or level) or wrote or q_valid or out_valid_i;
 
       if rst = '1' then
+        wrote   <= '0';
+        took    <= '0';
+        delta   <= (others => '0');
+        level   <= (others => '0');
         ready   <= '0';
-        empty   <= '1';
-        single  <= '0';
         q_valid <= '0';
         busy    <= '0';
       end if;
@@ -127,7 +127,7 @@ begin
 
   ram : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH        => 2 ** ADDR_BITS,
+      DEPTH        => WORDS,
       WIDTH        => WIDTH,
       READ_LATENCY => 1,
       STYLE        => "block"
@@ -135,10 +135,10 @@ begin
     port map (
       clk     => clk,
       wr_en   => write,
-      wr_addr => wr_ptr(ADDR_BITS - 1 downto 0),
+      wr_addr => wr_ptr,
       wr_data => in_data,
       rd_en   => read_en,
-      rd_addr => rd_ptr(ADDR_BITS - 1 downto 0),
+      rd_addr => rd_ptr,
       rd_data => q_data
     );
 

@@ -50,6 +50,8 @@ STALL = float(os.environ.get("TB_STALL", "0"))
 PERIOD_NS = 10
 
 Record = tuple[int, int, int]
+# No test may hang: a generous bound in simulated time.
+TIMEOUT_MS = 20 + 2e-3 * MAX_WIDTH * MAX_HEIGHT
 
 
 def all_generics() -> dict[str, object]:
@@ -190,22 +192,25 @@ class TB:
             if not SCORE_VIDEO and dut.m_axis_score_tvalid.value != 0:
                 self.score_without_video += 1
 
-    async def reset(self, cycles: int = 6) -> None:
+    async def reset(self, cycles: int = 6, settle: int = 4) -> None:
+        """aresetn low for `cycles` clocks, then `settle` clocks of rest."""
         self.dut.aresetn.value = 0
         self.source.clear()  # what was queued belongs to the frame cut by the reset
         await ClockCycles(self.dut.aclk, cycles)
         self.sink.clear()
         self.dut.aresetn.value = 1
-        await ClockCycles(self.dut.aclk, 4)  # the reset synchroniser
+        await ClockCycles(self.dut.aclk, settle)
 
     # ---- registers ------------------------------------------------------------
 
     async def write(self, offset: int, value: int) -> None:
-        resp = await self.axil.write(offset, value.to_bytes(4, "little"))
+        write = self.axil.write(offset, value.to_bytes(4, "little"))
+        resp = await self._with_budget(write, 200, f"response to a write at 0x{offset:02x}")
         assert resp.resp == AxiResp.OKAY, f"write 0x{offset:02x}: {resp.resp}"
 
     async def read(self, offset: int) -> int:
-        resp = await self.axil.read(offset, 4)
+        read = self.axil.read(offset, 4)
+        resp = await self._with_budget(read, 200, f"response to a read at 0x{offset:02x}")
         assert resp.resp == AxiResp.OKAY, f"read 0x{offset:02x}: {resp.resp}"
         return int.from_bytes(resp.data, "little")
 
@@ -317,7 +322,7 @@ class TB:
 # ---- tests -----------------------------------------------------------------------
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def registers(dut):
     """ID, VERSION, reset values, read/write, clamping, MODE, read-only and
     unmapped addresses, partial writes, write-1-to-clear."""
@@ -393,7 +398,7 @@ async def registers(dut):
     assert await tb.read(regs.CORNER_COUNT) == len(golden(img, 10))
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def generated_frames(dut):
     """Every pattern, back to back, sizes 7x7 to MAX_WIDTH x MAX_HEIGHT, size
     and threshold changed over AXI-Lite between frames, an empty frame."""
@@ -423,7 +428,7 @@ async def generated_frames(dut):
     assert tb.score_without_video == 0
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def real_images(dut):
     """Crops of real photographs (TB_CROPS: JSON list of [path, w, h, t])."""
     crops = json.loads(os.environ.get("TB_CROPS", "[]"))
@@ -435,7 +440,7 @@ async def real_images(dut):
     assert await tb.input_errors() == set()
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def empty_frame(dut):
     """A frame without corners sends exactly one record: EMPTY and LAST, zeros."""
     tb = await TB.create(dut)
@@ -451,7 +456,7 @@ def _good(tb: TB, w: int, h: int) -> np.ndarray:
     return testimages.blurred_noise(tb.np_rng, w, h)
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def malformed_then_good(dut):
     """Each kind of malformed input sets its STATUS bit, never locks up, and
     the well-formed frame after it is exact."""
@@ -536,7 +541,7 @@ async def malformed_then_good(dut):
     assert await tb.input_errors() == set()
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def reset_mid_frame(dut):
     """aresetn in the middle of a frame (records in flight): the registers
     return to their reset values and the next frames are exact. Then a soft
@@ -551,11 +556,18 @@ async def reset_mid_frame(dut):
     while tb.sink.empty() and not tb.sink.active:
         await RisingEdge(dut.aclk)
     await ClockCycles(dut.aclk, 7)
-    await tb.reset(8)
-    tb.sink.clear()
+    # Traffic on the first clock after aresetn rises (the DUT's own reset ends
+    # up to 3 clocks later): a frame at the reset size and threshold, and
+    # register reads, must neither be lost nor hang.
+    await tb.reset(8, settle=0)
+    first = testimages.blurred_noise(tb.np_rng, MAX_WIDTH, MAX_HEIGHT)
+    await tb.send_lines(video_lines(first))
+    assert await tb.read(regs.ID) == 0x46415354
     assert await tb.read(regs.THRESHOLD) == 20
     assert await tb.read(regs.WIDTH) == MAX_WIDTH
     assert await tb.read(regs.FRAME_COUNT) == 0
+    (frame,) = await tb.receive(1, 20 * first.size)
+    tb.check_frame(frame, golden(first, 20), "first frame after aresetn")
     frames = [(_good(tb, w, h), 12), (testimages.saturated(tb.np_rng, w, h), 30)]
     await tb.check_frames(frames, "after aresetn")
 
@@ -582,7 +594,7 @@ async def reset_mid_frame(dut):
     assert await tb.input_errors() == set()
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def interrupt_and_enable(dut):
     """interrupt follows FRAME_DONE when IRQ_ENABLE is set, clears with it;
     CTRL.ENABLE = 0 discards frames from their start of frame on."""
@@ -629,7 +641,7 @@ async def interrupt_and_enable(dut):
     assert await tb.input_errors() == set()
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def fifo_full(dut):
     """A long stall of the corner output with a corner-rich image: the FIFO
     fills, the video input is stalled (tready low), OVERFLOW is set, and no
@@ -660,7 +672,7 @@ async def fifo_full(dut):
     await tb.clear_status()
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def score_video(dut):
     """m_axis_score: one 8-bit beat per pixel, the golden score saturated to
     255, tuser on the first pixel, tlast on the last of each line."""
@@ -690,7 +702,7 @@ async def score_video(dut):
     assert peak > (255 if SCORE == "sad" else 0), f"highest score {peak}: saturation not tested"
 
 
-@cocotb.test()
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def throughput(dut):
     """No idle, no back-pressure: one frame, then back-to-back frames; clocks
     from the first pixel accepted to each frame's last record."""
@@ -711,6 +723,7 @@ async def throughput(dut):
             tb.check_frame(frame, golden(img, 10), "throughput")
         clocks = [c - tb.first_pixel for c in tb.last_records]
         results[count] = clocks
+        Path(os.environ.get("TB_RESULTS", os.devnull)).write_text(json.dumps(results))
         bound = 1.01 * count * w * h + 4 * w + 64
         dut._log.info(
             "%d x %dx%d: last records at %s clocks (W*H = %d, bound %.0f)",
@@ -728,4 +741,3 @@ async def throughput(dut):
         await ClockCycles(dut.aclk, 50)
     # Without back-pressure the corner FIFO never fills.
     assert await tb.errors() == set()
-    Path(os.environ.get("TB_RESULTS", os.devnull)).write_text(json.dumps(results))
