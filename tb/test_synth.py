@@ -15,8 +15,8 @@ MAX_LOGIC_LEVELS = 4
 DEEPER = {
     # Level counter: INV (bit 0 of +1) + 3 CARRY4 + the select LUT.
     "fastnms_stream_fifo": 5,
-    "fastnms_nms_region": 9,
-    "fastnms_nms_region_table": 8,
+    "fastnms_nms_region": 8,
+    "fastnms_nms_region_table": 7,
     "fastnms_nms_region_scan": 6,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
