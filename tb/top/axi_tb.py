@@ -438,6 +438,7 @@ async def real_images(dut):
     frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
     await tb.check_frames(frames, "photo")
     assert await tb.input_errors() == set()
+    assert tb.score_without_video == 0, "m_axis_score_tvalid rose without SCORE_VIDEO"
 
 
 @cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
