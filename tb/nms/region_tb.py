@@ -187,7 +187,9 @@ async def throughput(dut):
         await ClockCycles(dut.clk, 4 * w)
         clocks = await tb.run_maps([(corner, score)] * 3, name)
         per_pixel = clocks / (3 * w * h)
-        dut._log.info("%s: %d clocks for 3 frames %dx%d, %.3f per pixel", name, clocks, w, h, per_pixel)
+        dut._log.info(
+            "%s: %d clocks for 3 frames %dx%d, %.3f per pixel", name, clocks, w, h, per_pixel
+        )
         if name == "sparse 10%":
             # W clocks of flush per frame plus the pipeline: 1 pixel per clock otherwise.
             assert clocks <= 3 * (w * h + w) + 60, f"{name}: {clocks} clocks"
@@ -223,7 +225,13 @@ async def photo_maps(dut):
         per_pixel = clocks / img.size
         dut._log.info(
             "%s %dx%d t=%d %s: %d clocks, %.4f per pixel (flush pass included)",
-            Path(path).name, img.shape[1], img.shape[0], threshold, score, clocks, per_pixel,
+            Path(path).name,
+            img.shape[1],
+            img.shape[0],
+            threshold,
+            score,
+            clocks,
+            per_pixel,
         )
         if limit:
             assert per_pixel <= limit, f"{path}: {per_pixel:.4f} clocks per pixel > {limit}"

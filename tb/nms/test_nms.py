@@ -65,7 +65,12 @@ def test_nms_region_all_photos(request, connectivity):
     """Every real photograph at thresholds 10 and 20 (sad) at MAX_WIDTH 1920:
     records equal to the golden; clocks per pixel logged."""
     photos = [[str(p), t, "sad"] for p in testimages.real_images() for t in (10, 20)]
-    generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE_BITS": 12, "CONNECTIVITY": connectivity}
+    generics = {
+        "MAX_WIDTH": 1920,
+        "MAX_HEIGHT": 1080,
+        "SCORE_BITS": 12,
+        "CONNECTIVITY": connectivity,
+    }
     run_cocotb(
         "fastnms_nms_region",
         "region_tb",
