@@ -14,7 +14,7 @@ DEMO_PNG ?= build/demo/corners.png
 DEMO_CSV ?= build/demo/corners.csv
 
 .PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean \
-	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado
+	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado regmap
 
 help:
 	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a real photograph, writes $(DEMO_PNG)"
@@ -23,6 +23,7 @@ help:
 	@echo "make sim        cocotb regression only"
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
 	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector and core (yosys, xc7)"
+	@echo "make regmap     regenerate the register map files from rtl/top/fastnms_regs.toml"
 	@echo "make fusesoc-sim  FuseSoC + GHDL smoke test of fastnms.core"
 	@echo "make vivado-ip    package the Vivado IP into build/vivado/ip (needs Vivado)"
 	@echo "make vivado-bd    ZedBoard/ZC702 block design in build/vivado/zc7z20 (needs Vivado; BD_ARGS=--impl for the bitstream)"
@@ -74,12 +75,17 @@ golden-test: setup
 synth-check: setup
 	$(PYTEST) -m "not slow" tb/test_synth.py
 
-# Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector
-# and of the detector + 3x3 NMS, both scores, at 1920 pixels.
+# Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector,
+# of the detector + 3x3 NMS and of the AXI top, both scores, at 1920 pixels.
 synth-report: setup
 	@cd tb && for score in opencv sad; do \
 	  ../$(PY) synth.py fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; \
-	  ../$(PY) synth.py fastnms_core MAX_WIDTH=1920 SCORE=$$score NMS=3x3; done
+	  ../$(PY) synth.py fastnms_core MAX_WIDTH=1920 SCORE=$$score NMS=3x3; \
+	  ../$(PY) top/axi_synth.py MAX_WIDTH=1920 MAX_HEIGHT=1080 SCORE=$$score NMS=3x3; done
+
+# The register map's generated files, from rtl/top/fastnms_regs.toml.
+regmap: setup
+	$(PY) -m fastnms.regmap
 
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
