@@ -14,7 +14,7 @@ DEMO_PNG ?= build/demo/corners.png
 DEMO_CSV ?= build/demo/corners.csv
 
 .PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean \
-	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado regmap
+	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado synth bench regmap
 
 help:
 	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a real photograph, writes $(DEMO_PNG)"
@@ -23,6 +23,8 @@ help:
 	@echo "make sim        cocotb regression only"
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
 	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector and core (yosys, xc7)"
+	@echo "make synth      top and blocks, 3 configurations at 1920x1080: yosys xc7 figures, ECP5 Fmax (nextpnr) -> build/synth/summary.json, docs/results.md"
+	@echo "make bench      the AXI top simulated on 3 photographs at 1920x1080, region-NMS memory, software timings -> build/bench/summary.json, docs/results.md"
 	@echo "make regmap     regenerate the register map files from rtl/top/fastnms_regs.toml"
 	@echo "make fusesoc-sim  FuseSoC + GHDL smoke test of fastnms.core"
 	@echo "make vivado-ip    package the Vivado IP into build/vivado/ip (needs Vivado)"
@@ -86,6 +88,13 @@ synth-report: setup
 # The register map's generated files, from rtl/top/fastnms_regs.toml.
 regmap: setup
 	$(PY) -m fastnms.regmap
+
+# Measured results (docs/results.md): each target rewrites its own section.
+synth: setup
+	$(PY) tb/synth_summary.py --jobs $(JOBS)
+
+bench: setup
+	$(PY) tb/bench_sim.py --jobs $(JOBS)
 
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
