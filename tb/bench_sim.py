@@ -30,6 +30,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import report  # noqa: E402
 import testimages  # noqa: E402
 from harness import BUILD, REPO, rtl_sources, test_seed  # noqa: E402
 
@@ -316,6 +317,7 @@ def main(argv: list[str] | None = None) -> None:
 
     start = time.perf_counter()
     load = round(os.getloadavg()[0], 1)
+    source = report.source_state()
     args.out.parent.mkdir(parents=True, exist_ok=True)
     frames, sources = bench_frames(args.width, args.height, args.frames)
     frames_file = args.out.parent / f"frames-{args.width}x{args.height}x{args.frames}.npy"
@@ -376,6 +378,7 @@ def main(argv: list[str] | None = None) -> None:
             "parallel_simulations": args.jobs,
             "load_before": load,
         },
+        "source": source,
         "wall_seconds": time.perf_counter() - start,
     }
     args.out.write_text(json.dumps(summary, indent=1) + "\n")
@@ -383,8 +386,6 @@ def main(argv: list[str] | None = None) -> None:
         f"bench: wrote {args.out.relative_to(REPO) if args.out.is_relative_to(REPO) else args.out}"
     )
     if not args.no_report:
-        import report
-
         path = report.update_bench(summary)
         print(f"bench: rewrote the bench section of {path.relative_to(REPO)}")
 

