@@ -200,10 +200,22 @@ begin
 
   in_ready <= advance and not hold;
 
-  in_x_clear  <= rst or (advance and (restart or (counted and in_x_last)));
-  in_x_step   <= advance and counted;
-  in_y_clear  <= rst or (advance and (restart or (counted and in_x_last and in_y_last)));
-  in_y_step   <= advance and counted and in_x_last;
+  -- The counter controls are written out from the registers (restart, hold
+  -- and counted expanded) so that each maps to two LUT levels.
+  in_x_clear  <= rst or (advance and a_valid and
+                         ((a_sof and in_active) or
+                           (in_x_last and not a_sof and (in_active or a_start) and
+                             not (at_start and out_busy)) or
+                           (in_x_last and a_sof and not in_active and a_start)));
+  in_x_step   <= advance and a_valid and
+                 ((not a_sof and (in_active or a_start) and not (at_start and out_busy)) or
+                  (a_sof and not in_active and a_start));
+  in_y_clear  <= rst or (advance and a_valid and
+                         ((a_sof and in_active) or
+                           (in_x_last and in_y_last and not a_sof and (in_active or a_start) and
+                             not (at_start and out_busy)) or
+                           (in_x_last and in_y_last and a_sof and not in_active and a_start)));
+  in_y_step   <= in_x_step and in_x_last;
   out_x_clear <= rst or (advance and emit and out_x_last);
   out_x_step  <= advance and emit;
   out_y_clear <= rst or (advance and emit and out_x_last and out_y_last);

@@ -134,9 +134,11 @@ begin
   n_valid   <= d_valid and t_ready;
   tap_valid <= d_valid and n_ready when SCORE_TAP else
                '0';
-  tap_score <= d_score;
-  tap_sof   <= d_sof;
-  tap_eol   <= d_eol;
+  -- Without SCORE_TAP the tap outputs are constant.
+  tap_score <= d_score when SCORE_TAP else
+               (others => '0');
+  tap_sof   <= d_sof and to_sl(SCORE_TAP);
+  tap_eol   <= d_eol and to_sl(SCORE_TAP);
 
   suppress_3x3 : if NMS = "3x3" generate
 
