@@ -200,6 +200,7 @@ architecture rtl of fastnms_nms_region_table is
     elsif next_state = pass_read then
       return pass_count;
     end if;
+
     return next_state;
 
   end function launch;
