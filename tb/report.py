@@ -73,9 +73,12 @@ REASONS = {
         "The region NMS's table decides its next state from RAM outputs (the "
         "34-bit key compare, list pointers) in the same clock (docs/nms.md, "
         "*Synthesis*); pipelining it is open work, and every configuration that "
-        "contains the region NMS inherits its depth. The 3x3 top at 1920x1080 "
-        "may map the core's window generators to 5 levels depending on how abc "
-        "maps the whole design (tb/test_synth.py, `test_axi_top_1920`)."
+        "contains the region NMS inherits its depth. The 3x3 configuration at "
+        "MAX_HEIGHT 1080 (`fastnms_core` alone and the top) can come out one level "
+        "deeper than its blocks: abc, which maps for area, chains the window "
+        "generators' control logic into 5 levels in that context, though the "
+        "detector and the 3x3 NMS each map in 4 (tb/test_synth.py tolerates this "
+        "5th level and says so)."
     ),
     "ppc": (
         "The region NMS adds a flush pass of W clocks after each frame's last "
