@@ -79,6 +79,83 @@ def logic_levels(netlist_json: Path, top: str) -> int:
     )
 
 
+def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str]]:
+    """The `count` deepest register-to-register paths (by logic levels), each
+    as a list 'CELLTYPE net' from the start register to the last logic cell:
+    where to look when logic_levels grows."""
+    module = json.loads(netlist_json.read_text())["modules"][top]
+    names: dict[int, str] = {}
+    for name, net in module["netnames"].items():
+        for bit in net["bits"]:
+            if isinstance(bit, int):
+                old = names.get(bit)
+                if old is None or (old.startswith("$") and not name.startswith("$")):
+                    names[bit] = name
+    drivers: dict[int, str] = {}
+    cells = module["cells"]
+    for name, cell in cells.items():
+        for port, bits in cell["connections"].items():
+            if cell["port_directions"].get(port) == "output":
+                for bit in bits:
+                    if isinstance(bit, int):
+                        drivers[bit] = name
+    best: dict[str, tuple[int, str | None, int]] = {}
+
+    def visit(name: str) -> tuple[int, str | None, int]:
+        if name in best:
+            return best[name]
+        best[name] = (1, None, -1)
+        cell = cells[name]
+        result = (1, None, -1)
+        for port, bits in cell["connections"].items():
+            if cell["port_directions"].get(port) != "input":
+                continue
+            for bit in bits:
+                if isinstance(bit, int) and bit in drivers:
+                    src = drivers[bit]
+                    if LOGIC_CELLS.match(cells[src]["type"]):
+                        d = visit(src)[0] + 1
+                    else:
+                        d = 1
+                    if d > result[0] or result[1] is None:
+                        result = (d, src, bit)
+        best[name] = result
+        return result
+
+    sys.setrecursionlimit(100000)
+    logic = [n for n, c in cells.items() if LOGIC_CELLS.match(c["type"])]
+    for n in logic:
+        visit(n)
+    paths = []
+    for end in sorted(logic, key=lambda n: -best[n][0])[:count]:
+        path, name = [], end
+        while name is not None:
+            depth, src, bit = best[name]
+            out_bits = [b for p, bs in cells[name]["connections"].items()
+                        if cells[name]["port_directions"].get(p) == "output" for b in bs]
+            net = names.get(out_bits[0], "?") if out_bits else "?"
+            path.append(f"{cells[name]['type']} {net}")
+            if src is not None and not LOGIC_CELLS.match(cells[src]["type"]):
+                path.append(f"{cells[src]['type']} {names.get(bit, '?')}")
+                break
+            name = src
+        path.reverse()
+        end_bits = {b for p, bs in cells[end]["connections"].items()
+                    if cells[end]["port_directions"].get(p) == "output" for b in bs}
+        for sink in cells.values():
+            if LOGIC_CELLS.match(sink["type"]):
+                continue
+            hit = [p for p, bs in sink["connections"].items()
+                   if sink["port_directions"].get(p) == "input" and end_bits & set(bs)]
+            if hit:
+                q = [b for p, bs in sink["connections"].items()
+                     if sink["port_directions"].get(p) == "output" for b in bs]
+                path.append(f"-> {sink['type']}.{hit[0]} {names.get(q[0], '?') if q else ''}")
+                break
+        paths.append(path)
+    return paths
+
+
 def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     """Map a netlist to xc7 cells; return the cell counts of the flattened
     design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3}) plus the key
@@ -132,11 +209,16 @@ def entities() -> list[str]:
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:
-        sys.exit("usage: synth.py ENTITY [GENERIC=VALUE ...] [--cells]")
+        sys.exit("usage: synth.py ENTITY [GENERIC=VALUE ...] [--cells] [--paths]")
     name, *args = sys.argv[1:]
     gens = dict(a.split("=", 1) for a in args if "=" in a)
     path, _ = ghdl_synth(name, gens)
     cells = yosys_xc7(path, name)
+    if "--paths" in args:
+        for p in deepest_paths(path.with_suffix(".xc7.json"), name):
+            print(f"{len(p) - 1} levels:")
+            for step in p:
+                print("   ", step)
     if "--cells" in args:
         for cell, count in sorted(cells.items()):
             print(f"{cell:12s} {count}")

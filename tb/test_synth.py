@@ -19,7 +19,7 @@ DEEPER = {
     # abc chains the window generators' counter controls (register -> 4
     # LUTs -> the counters' reset/enable) differently. See docs/nms.md.
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
-    "fastnms_nms_region": 8,
+    "fastnms_nms_region": 7,
     "fastnms_nms_region_table": 7,
     "fastnms_nms_region_scan": 6,
 }

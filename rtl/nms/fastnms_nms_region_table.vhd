@@ -11,7 +11,13 @@
 --                key is the larger score, then the first pixel in raster order
 --   head, tail   its list of labels
 -- Labels and regions are recycled through free lists (FIFOs); labels also go
--- to the scan as its spare label.
+-- to the scan as its spare label. Both are handed out through skid buffers.
+--
+-- Timing: decisions are taken from registers or from flags stored in the RAM
+-- words (runs = 1, has next, has prev) rather than from comparisons of RAM
+-- outputs; a maximum is compared from registers and written one clock after
+-- it is read. The remaining RAM-output decisions (the union's "same region"
+-- comparison, the next state after a pass) set the block's clock rate.
 --
 -- Events, in this order within one beat:
 --   new    label l starts with one run, in a fresh region whose best is the run's first pixel
@@ -99,18 +105,30 @@ architecture rtl of fastnms_nms_region_table is
   signal lab_runs    : std_logic_vector(RUN_BITS - 1 downto 0);
   signal lab_next    : std_logic_vector(LABEL_BITS - 1 downto 0);
   signal lab_prev    : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal region_we   : std_logic;
-  signal region_addr : label_t;
-  signal region_data : label_t;
-  signal runs_we     : std_logic;
-  signal runs_addr   : label_t;
-  signal runs_data   : unsigned(RUN_BITS - 1 downto 0);
-  signal next_we     : std_logic;
-  signal next_addr   : label_t;
-  signal next_data   : label_t;
-  signal prev_we     : std_logic;
-  signal prev_addr   : label_t;
-  signal prev_data   : label_t;
+  -- Flags stored beside the counts and links, decoded when written, so that
+  -- no decision compares a RAM output: runs = 1, next /= none, prev /= none.
+  signal lab_one      : std_logic;
+  signal lab_has_next : std_logic;
+  signal lab_has_prev : std_logic;
+  signal runs_word    : std_logic_vector(RUN_BITS downto 0);
+  signal next_word    : std_logic_vector(LABEL_BITS downto 0);
+  signal prev_word    : std_logic_vector(LABEL_BITS downto 0);
+  signal runs_one     : std_logic;
+  signal next_has     : std_logic;
+  signal prev_has     : std_logic;
+  signal closes       : std_logic;
+  signal region_we    : std_logic;
+  signal region_addr  : label_t;
+  signal region_data  : label_t;
+  signal runs_we      : std_logic;
+  signal runs_addr    : label_t;
+  signal runs_data    : unsigned(RUN_BITS - 1 downto 0);
+  signal next_we      : std_logic;
+  signal next_addr    : label_t;
+  signal next_data    : label_t;
+  signal prev_we      : std_logic;
+  signal prev_addr    : label_t;
+  signal prev_data    : label_t;
   -- Region RAMs: one read address for all fields.
   signal reg_rd_addr : label_t;
   signal reg_best    : std_logic_vector(KEY_BITS - 1 downto 0);
@@ -126,30 +144,57 @@ architecture rtl of fastnms_nms_region_table is
   signal tail_addr   : label_t;
   signal tail_data   : label_t;
   -- Working registers.
-  signal region_a  : label_t;
-  signal region_b  : label_t;
-  signal best_a    : key_t;
-  signal tail_a    : label_t;
-  signal cursor    : label_t;
-  signal event_key : key_t;
-  signal finish    : std_logic;
-  -- Free lists and the spare label / region.
-  signal lab_fresh    : unsigned(LABEL_BITS downto 0);
-  signal lab_free_in  : std_logic;
-  signal lab_free_out : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal lab_free_ok  : std_logic;
-  signal lab_free_pop : std_logic;
-  signal spare_ok     : std_logic;
-  signal spare        : label_t;
-  signal reg_fresh    : unsigned(LABEL_BITS downto 0);
-  signal reg_free_in  : std_logic;
-  signal reg_free_lab : label_t;
-  signal reg_free_out : std_logic_vector(LABEL_BITS - 1 downto 0);
-  signal reg_free_ok  : std_logic;
-  signal reg_free_pop : std_logic;
-  signal new_region   : label_t;
-  signal new_ok       : std_logic;
-  signal take_region  : std_logic;
+  signal region_a : label_t;
+  signal region_b : label_t;
+  signal best_a   : key_t;
+  signal best_b   : key_t;
+  -- The clock after end_best: its maximum is written.
+  signal end_pending : std_logic;
+  signal tail_a      : label_t;
+  signal cursor      : label_t;
+  signal event_key   : key_t;
+  -- The event beat being worked on.
+  signal e_new         : std_logic;
+  signal e_union       : std_logic;
+  signal e_end         : std_logic;
+  signal e_credit      : std_logic;
+  signal e_pass        : std_logic;
+  signal e_eof         : std_logic;
+  signal e_union_label : label_t;
+  signal e_pass_label  : label_t;
+  signal e_label       : label_t;
+  signal e_score       : unsigned(SCORE_BITS - 1 downto 0);
+  signal e_x           : unsigned(X_BITS - 1 downto 0);
+  signal e_y           : unsigned(Y_BITS - 1 downto 0);
+  -- Free lists, and the spare label and region handed out from them: each
+  -- through a skid buffer, so that taking one pops no FIFO in the same clock.
+  -- Ids never handed out yet come from a counter first (`fresh`).
+  signal lab_fresh     : unsigned(LABEL_BITS - 1 downto 0);
+  signal lab_fresh_ok  : std_logic;
+  signal lab_free_in   : std_logic;
+  signal lab_free_out  : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_free_ok   : std_logic;
+  signal lab_free_pop  : std_logic;
+  signal lab_supply    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal lab_supply_ok : std_logic;
+  signal lab_supplied  : std_logic;
+  signal lab_ready     : std_logic;
+  signal spare_data    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_fresh     : unsigned(LABEL_BITS - 1 downto 0);
+  signal reg_fresh_ok  : std_logic;
+  signal reg_free_in   : std_logic;
+  signal reg_free_lab  : label_t;
+  signal reg_free_out  : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_free_ok   : std_logic;
+  signal reg_free_pop  : std_logic;
+  signal reg_supply    : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal reg_supply_ok : std_logic;
+  signal reg_supplied  : std_logic;
+  signal reg_ready     : std_logic;
+  signal new_region    : label_t;
+  signal new_region_v  : std_logic_vector(LABEL_BITS - 1 downto 0);
+  signal new_ok        : std_logic;
+  signal take_region   : std_logic;
   -- Output.
   signal emit       : std_logic;
   signal emit_ready : std_logic;
@@ -211,7 +256,16 @@ begin
     report "fastnms_nms_region_table: LABELS does not fit in LABEL_BITS"
     severity failure;
 
-  event_key <= ev_score & not ev_y & not ev_x;
+  event_key <= e_score & not e_y & not e_x;
+
+  lab_runs     <= runs_word(RUN_BITS - 1 downto 0);
+  lab_one      <= runs_word(RUN_BITS);
+  lab_next     <= next_word(LABEL_BITS - 1 downto 0);
+  lab_has_next <= next_word(LABEL_BITS);
+  lab_prev     <= prev_word(LABEL_BITS - 1 downto 0);
+  lab_has_prev <= prev_word(LABEL_BITS);
+  -- The label's last run passes and it is its region's only label.
+  closes <= lab_one and not lab_has_prev and not lab_has_next;
 
   -- ---- the event sequencer --------------------------------------------------
   sequencer : process (clk) is
@@ -224,7 +278,7 @@ begin
         end if;
       elsif state = new_run then
         if new_ok = '1' then
-          state <= first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= first_step(STEP_UNION, e_new, e_union, e_end, e_pass, e_eof);
         end if;
       elsif state = union_a then
         state <= union_b;
@@ -234,7 +288,7 @@ begin
       elsif state = union_cmp then
         region_b <= unsigned(lab_region);
         if unsigned(lab_region) = region_a then
-          state <= launch(first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof));
+          state <= launch(first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof));
         else
           state <= union_read_b;
         end if;
@@ -243,14 +297,15 @@ begin
         tail_a <= unsigned(reg_tail);
         state  <= union_link;
       elsif state = union_link then
+        best_b <= unsigned(reg_best);
         cursor <= unsigned(reg_head);
         state  <= walk;
       elsif state = walk then
         state <= walk_next;
       elsif state = walk_next then
         cursor <= unsigned(lab_next);
-        if unsigned(lab_next) = NONE then
-          state <= launch(first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof));
+        if lab_has_next = '0' then
+          state <= launch(first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof));
         else
           state <= walk;
         end if;
@@ -260,19 +315,20 @@ begin
         region_a <= unsigned(lab_region);
         state    <= end_best;
       elsif state = end_best then
-        state <= launch(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof));
+        best_b <= unsigned(reg_best);
+        state  <= launch(first_step(STEP_PASS, e_new, e_union, e_end, e_pass, e_eof));
       elsif state = pass_read then
         state <= pass_count;
       elsif state = pass_count then
         region_a <= unsigned(lab_region);
-        if unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and unsigned(lab_next) = NONE then
+        if closes = '1' then
           state <= pass_emit;
         else
-          state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= first_step(STEP_EOF, e_new, e_union, e_end, e_pass, e_eof);
         end if;
       elsif state = pass_emit then
         if emit_ready = '1' then
-          state <= first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof);
+          state <= first_step(STEP_EOF, e_new, e_union, e_end, e_pass, e_eof);
         end if;
       elsif state = eof_emit then
         if emit_ready = '1' then
@@ -280,70 +336,72 @@ begin
         end if;
       end if;
 
+      end_pending <= to_sl(state = end_best);
+
       if rst = '1' then
-        state <= fetch;
+        state       <= fetch;
+        end_pending <= '0';
       end if;
     end if;
 
   end process sequencer;
 
-  -- The event beat leaves the queue on the clock its last step completes.
-  finish_step : process (all) is
+  -- The table takes an event beat into its own registers (e_*) in `fetch`:
+  -- the queue's pop never waits for a decision made from RAM outputs.
+  ev_ready <= to_sl(state = fetch);
+
+  event_register : process (clk) is
   begin
 
-    finish <= '0';
-
-    if state = new_run then
-      finish <= new_ok and to_sl(first_step(STEP_UNION, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = union_cmp then
-      finish <= to_sl(unsigned(lab_region) = region_a and
-                      first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = walk_next then
-      finish <= to_sl(unsigned(lab_next) = NONE and
-                      first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = end_best then
-      finish <= to_sl(first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = pass_count then
-      finish <= to_sl(not (unsigned(lab_runs) = 1 and unsigned(lab_prev) = NONE and
-                           unsigned(lab_next) = NONE) and
-                      first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = pass_emit then
-      finish <= emit_ready and to_sl(first_step(STEP_EOF, ev_new, ev_union, ev_end, ev_pass, ev_eof) = fetch);
-    elsif state = eof_emit then
-      finish <= emit_ready;
+    if rising_edge(clk) then
+      if state = fetch then
+        e_new         <= ev_new;
+        e_union       <= ev_union;
+        e_end         <= ev_end;
+        e_credit      <= ev_credit;
+        e_pass        <= ev_pass;
+        e_eof         <= ev_eof;
+        e_union_label <= ev_union_label;
+        e_pass_label  <= ev_pass_label;
+        e_label       <= ev_label;
+        e_score       <= ev_score;
+        e_x           <= ev_x;
+        e_y           <= ev_y;
+      end if;
     end if;
 
-  end process finish_step;
-
-  ev_ready <= finish;
+  end process event_register;
 
   -- ---- RAM addresses and writes per state -----------------------------------
   ports : process (all) is
   begin
 
-    lab_rd_addr  <= ev_label;
+    lab_rd_addr  <= e_label;
     reg_rd_addr  <= region_a;
     region_we    <= '0';
-    region_addr  <= ev_label;
+    region_addr  <= e_label;
     region_data  <= new_region;
     runs_we      <= '0';
-    runs_addr    <= ev_label;
+    runs_addr    <= e_label;
     runs_data    <= to_unsigned(1, RUN_BITS);
+    runs_one     <= '1';
     next_we      <= '0';
-    next_addr    <= ev_label;
+    next_addr    <= e_label;
     next_data    <= NONE;
+    next_has     <= '0';
     prev_we      <= '0';
-    prev_addr    <= ev_label;
+    prev_addr    <= e_label;
     prev_data    <= NONE;
+    prev_has     <= '0';
     best_we      <= '0';
     best_addr    <= new_region;
     best_data    <= event_key;
     head_we      <= '0';
     head_addr    <= new_region;
-    head_data    <= ev_label;
+    head_data    <= e_label;
     tail_we      <= '0';
     tail_addr    <= new_region;
-    tail_data    <= ev_label;
+    tail_data    <= e_label;
     take_region  <= '0';
     reg_free_in  <= '0';
     reg_free_lab <= region_b;
@@ -362,81 +420,88 @@ begin
       tail_we     <= new_ok;
       take_region <= new_ok;
     elsif state = union_a then
-      lab_rd_addr <= ev_label;
+      lab_rd_addr <= e_label;
     elsif state = union_b then
-      lab_rd_addr <= ev_union_label;
+      lab_rd_addr <= e_union_label;
     elsif state = union_cmp then
       reg_rd_addr <= region_a;
-      if first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
-        lab_rd_addr <= ev_pass_label;
+      if first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof) = pass_read then
+        lab_rd_addr <= e_pass_label;
       end if;
     elsif state = union_read_b then
       reg_rd_addr <= region_b;
     elsif state = union_link then
-      -- Region b's list goes after region a's; a keeps the better maximum.
-      best_we     <= '1';
-      best_addr   <= region_a;
-      best_data   <= larger(best_a, unsigned(reg_best));
+      -- Region b's list goes after region a's (a's maximum: see walk).
       tail_we     <= '1';
       tail_addr   <= region_a;
       tail_data   <= unsigned(reg_tail);
       next_we     <= '1';
       next_addr   <= tail_a;
       next_data   <= unsigned(reg_head);
+      next_has    <= '1';
       prev_we     <= '1';
       prev_addr   <= unsigned(reg_head);
       prev_data   <= tail_a;
+      prev_has    <= '1';
       reg_free_in <= '1';
     elsif state = walk then
+      -- Region a keeps the better maximum, compared from registers (written
+      -- on every walk step, the same word each time).
+      best_we     <= '1';
+      best_addr   <= region_a;
+      best_data   <= larger(best_a, best_b);
       region_we   <= '1';
       region_addr <= cursor;
       region_data <= region_a;
       lab_rd_addr <= cursor;
     elsif state = walk_next then
-      if first_step(STEP_END, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
-        lab_rd_addr <= ev_pass_label;
+      if first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof) = pass_read then
+        lab_rd_addr <= e_pass_label;
       end if;
     elsif state = fetch then
       -- The first step's label read (see launch).
       if first_step(STEP_NEW, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
         lab_rd_addr <= ev_pass_label;
+      else
+        lab_rd_addr <= ev_label;
       end if;
     elsif state = end_read then
-      lab_rd_addr <= ev_label;
+      lab_rd_addr <= e_label;
     elsif state = end_count then
-      runs_we     <= not ev_credit;
+      runs_we     <= not e_credit;
       runs_data   <= unsigned(lab_runs) + 1;
+      runs_one    <= to_sl(unsigned(lab_runs) = 0);
       reg_rd_addr <= unsigned(lab_region);
     elsif state = end_best then
-      best_we   <= '1';
-      best_addr <= region_a;
-      best_data <= larger(unsigned(reg_best), event_key);
-      if first_step(STEP_PASS, ev_new, ev_union, ev_end, ev_pass, ev_eof) = pass_read then
-        lab_rd_addr <= ev_pass_label;
+      if first_step(STEP_PASS, e_new, e_union, e_end, e_pass, e_eof) = pass_read then
+        lab_rd_addr <= e_pass_label;
       end if;
     elsif state = pass_read then
-      lab_rd_addr <= ev_pass_label;
+      lab_rd_addr <= e_pass_label;
     elsif state = pass_count then
-      runs_addr   <= ev_pass_label;
+      runs_addr   <= e_pass_label;
       runs_data   <= unsigned(lab_runs) - 1;
+      runs_one    <= to_sl(unsigned(lab_runs) = 2);
       reg_rd_addr <= unsigned(lab_region);
-      if unsigned(lab_runs) /= 1 then
+      if lab_one = '0' then
         runs_we <= '1';
       else
         -- The label leaves its region's list and is free again.
         lab_free_in <= '1';
         next_addr   <= unsigned(lab_prev);
         next_data   <= unsigned(lab_next);
-        next_we     <= to_sl(unsigned(lab_prev) /= NONE);
+        next_has    <= lab_has_next;
+        next_we     <= lab_has_prev;
         head_addr   <= unsigned(lab_region);
         head_data   <= unsigned(lab_next);
-        head_we     <= to_sl(unsigned(lab_prev) = NONE);
+        head_we     <= not lab_has_prev;
         prev_addr   <= unsigned(lab_next);
         prev_data   <= unsigned(lab_prev);
-        prev_we     <= to_sl(unsigned(lab_next) /= NONE);
+        prev_has    <= lab_has_prev;
+        prev_we     <= lab_has_next;
         tail_addr   <= unsigned(lab_region);
         tail_data   <= unsigned(lab_prev);
-        tail_we     <= to_sl(unsigned(lab_next) = NONE);
+        tail_we     <= not lab_has_next;
       end if;
     elsif state = pass_emit then
       -- The list is empty: the region is closed.
@@ -450,42 +515,88 @@ begin
       emit_data(KEY_BITS) <= '1';
     end if;
 
+    -- The run's best enters its region on the clock after end_best, compared
+    -- from registers. That clock (pass_count, eof_emit or fetch) writes no
+    -- other maximum, and the region pass_count may read is never this one
+    -- when it closes: the ended run keeps one run of the region in the line.
+    if end_pending = '1' then
+      best_we   <= '1';
+      best_addr <= region_a;
+      best_data <= larger(best_b, event_key);
+    end if;
+
   end process ports;
 
   -- ---- spare label and region ----------------------------------------------
-  lab_free_pop <= lab_free_ok and (not spare_ok or spare_take) and to_sl(lab_fresh = LABELS);
-  reg_free_pop <= reg_free_ok and take_region and to_sl(reg_fresh = LABELS);
-  new_region   <= reg_fresh(LABEL_BITS - 1 downto 0) when reg_fresh /= LABELS else
-                  unsigned(reg_free_out);
-  new_ok       <= to_sl(reg_fresh /= LABELS) or reg_free_ok;
-  spare_valid  <= spare_ok;
-  spare_label  <= spare;
+  lab_supply_ok <= lab_fresh_ok or lab_free_ok;
+  lab_supply    <= std_logic_vector(lab_fresh) when lab_fresh_ok = '1' else
+                   lab_free_out;
+  lab_free_pop  <= lab_supplied and lab_free_ok and not lab_fresh_ok;
+  reg_supply_ok <= reg_fresh_ok or reg_free_ok;
+  reg_supply    <= std_logic_vector(reg_fresh) when reg_fresh_ok = '1' else
+                   reg_free_out;
+  reg_free_pop  <= reg_supplied and reg_free_ok and not reg_fresh_ok;
+  spare_label   <= unsigned(spare_data);
+  new_region    <= unsigned(new_region_v);
 
-  supply : process (clk) is
+  -- Ids 1 .. LABELS - 1 that were never handed out.
+  fresh_ids : process (clk) is
   begin
 
     if rising_edge(clk) then
-      if spare_ok = '0' or spare_take = '1' then
-        if lab_fresh /= LABELS then
-          spare     <= lab_fresh(LABEL_BITS - 1 downto 0);
-          spare_ok  <= '1';
-          lab_fresh <= lab_fresh + 1;
-        else
-          spare    <= unsigned(lab_free_out);
-          spare_ok <= lab_free_ok;
-        end if;
+      if lab_supplied = '1' and lab_fresh_ok = '1' then
+        lab_fresh    <= lab_fresh + 1;
+        lab_fresh_ok <= to_sl(lab_fresh /= LABELS - 1);
       end if;
-      if take_region = '1' and reg_fresh /= LABELS then
-        reg_fresh <= reg_fresh + 1;
+      if reg_supplied = '1' and reg_fresh_ok = '1' then
+        reg_fresh    <= reg_fresh + 1;
+        reg_fresh_ok <= to_sl(reg_fresh /= LABELS - 1);
       end if;
       if rst = '1' then
-        spare_ok  <= '0';
-        lab_fresh <= to_unsigned(1, lab_fresh'length);
-        reg_fresh <= to_unsigned(1, reg_fresh'length);
+        lab_fresh    <= to_unsigned(1, LABEL_BITS);
+        lab_fresh_ok <= '1';
+        reg_fresh    <= to_unsigned(1, LABEL_BITS);
+        reg_fresh_ok <= '1';
       end if;
     end if;
 
-  end process supply;
+  end process fresh_ids;
+
+  -- The scan's spare label.
+  spare_out : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => LABEL_BITS
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => lab_supply_ok,
+      in_ready  => lab_ready,
+      in_data   => lab_supply,
+      out_valid => spare_valid,
+      out_ready => spare_take,
+      out_data  => spare_data
+    );
+
+  lab_supplied <= lab_ready and lab_supply_ok;
+
+  -- The region a new run's region takes.
+  region_out : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH => LABEL_BITS
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => reg_supply_ok,
+      in_ready  => reg_ready,
+      in_data   => reg_supply,
+      out_valid => new_ok,
+      out_ready => take_region,
+      out_data  => new_region_v
+    );
+
+  reg_supplied <= reg_ready and reg_supply_ok;
 
   label_free_list : entity work.fastnms_stream_fifo
     generic map (
@@ -498,7 +609,7 @@ begin
       in_valid  => lab_free_in,
       in_ready  => open,
       in_room2  => open,
-      in_data   => std_logic_vector(ev_pass_label),
+      in_data   => std_logic_vector(e_pass_label),
       out_valid => lab_free_ok,
       out_ready => lab_free_pop,
       out_data  => lab_free_out
@@ -538,44 +649,44 @@ begin
 
   label_runs : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => RUN_BITS
+      DEPTH => LABELS, WIDTH => RUN_BITS + 1
     )
     port map (
       clk     => clk,
       wr_en   => runs_we,
       wr_addr => runs_addr,
-      wr_data => std_logic_vector(runs_data),
+      wr_data => runs_one & std_logic_vector(runs_data),
       rd_en   => '1',
       rd_addr => lab_rd_addr,
-      rd_data => lab_runs
+      rd_data => runs_word
     );
 
   label_next : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => LABEL_BITS
+      DEPTH => LABELS, WIDTH => LABEL_BITS + 1
     )
     port map (
       clk     => clk,
       wr_en   => next_we,
       wr_addr => next_addr,
-      wr_data => std_logic_vector(next_data),
+      wr_data => next_has & std_logic_vector(next_data),
       rd_en   => '1',
       rd_addr => lab_rd_addr,
-      rd_data => lab_next
+      rd_data => next_word
     );
 
   label_prev : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => LABEL_BITS
+      DEPTH => LABELS, WIDTH => LABEL_BITS + 1
     )
     port map (
       clk     => clk,
       wr_en   => prev_we,
       wr_addr => prev_addr,
-      wr_data => std_logic_vector(prev_data),
+      wr_data => prev_has & std_logic_vector(prev_data),
       rd_en   => '1',
       rd_addr => lab_rd_addr,
-      rd_data => lab_prev
+      rd_data => prev_word
     );
 
   region_best : entity work.fastnms_ram_sdp
