@@ -108,7 +108,8 @@ def region_memory(
     event_bits = 6 + 3 * label_bits + score_bits + x_bits + y_bits
     rows = [
         ("label line (RAM index)", max_width, label_bits + 1),
-        ("label tables: region, runs, next, prev", labels, 3 * label_bits + run_bits),
+        # runs, next and prev each carry a flag bit (runs = 1, has next, has prev).
+        ("label tables: region, runs, next, prev", labels, 3 * label_bits + run_bits + 3),
         ("region tables: best key, head, tail (RAM score)", labels, key_bits + 2 * label_bits),
         ("free lists: labels, regions", 2 * labels, label_bits),
         ("event queue", event_depth, event_bits),

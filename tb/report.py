@@ -70,15 +70,19 @@ REASONS = {
         "not have; `fastnms_core` is the like-for-like comparison."
     ),
     "levels": (
-        "The region NMS's table decides its next state from RAM outputs (the "
-        "34-bit key compare, list pointers) in the same clock (docs/nms.md, "
-        "*Synthesis*); pipelining it is open work, and every configuration that "
-        "contains the region NMS inherits its depth. The 3x3 configuration at "
-        "MAX_HEIGHT 1080 (`fastnms_core` alone and the top) can come out one level "
-        "deeper than its blocks: abc, which maps for area, chains the window "
-        "generators' control logic into 5 levels in that context, though the "
-        "detector and the 3x3 NMS each map in 4 (tb/test_synth.py tolerates this "
-        "5th level and says so)."
+        "The region NMS takes decisions from block-RAM outputs in the clock they "
+        "appear: the scan from the label line (the label above-right compared "
+        "with the run's), the table from its label and region tables (the "
+        "union's same-region comparison, its next state and RAM addresses from "
+        "a 16-state register); every configuration that contains it inherits "
+        "its depth (docs/nms.md, *Synthesis*, lists what was registered and what "
+        "is left: the RAM output registers, one more clock per table read, and "
+        "a one-hot table state). The 3x3 configuration at MAX_HEIGHT 1080 "
+        "(`fastnms_core` alone and the top) can come out one level deeper than "
+        "its blocks: abc, which maps for area, chains the window generators' "
+        "control logic into 5 levels in that context, though the detector and "
+        "the 3x3 NMS each map in 4 (tb/test_synth.py tolerates this 5th level "
+        "and says so)."
     ),
     "ppc": (
         "The region NMS adds a flush pass of W clocks after each frame's last "

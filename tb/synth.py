@@ -113,10 +113,7 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
             for bit in bits:
                 if isinstance(bit, int) and bit in drivers:
                     src = drivers[bit]
-                    if LOGIC_CELLS.match(cells[src]["type"]):
-                        d = visit(src)[0] + 1
-                    else:
-                        d = 1
+                    d = visit(src)[0] + 1 if LOGIC_CELLS.match(cells[src]["type"]) else 1
                     if d > result[0] or result[1] is None:
                         result = (d, src, bit)
         best[name] = result
@@ -131,8 +128,12 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
         path, name = [], end
         while name is not None:
             depth, src, bit = best[name]
-            out_bits = [b for p, bs in cells[name]["connections"].items()
-                        if cells[name]["port_directions"].get(p) == "output" for b in bs]
+            out_bits = [
+                b
+                for p, bs in cells[name]["connections"].items()
+                if cells[name]["port_directions"].get(p) == "output"
+                for b in bs
+            ]
             net = names.get(out_bits[0], "?") if out_bits else "?"
             path.append(f"{cells[name]['type']} {net}")
             if src is not None and not LOGIC_CELLS.match(cells[src]["type"]):
@@ -140,16 +141,27 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
                 break
             name = src
         path.reverse()
-        end_bits = {b for p, bs in cells[end]["connections"].items()
-                    if cells[end]["port_directions"].get(p) == "output" for b in bs}
+        end_bits = {
+            b
+            for p, bs in cells[end]["connections"].items()
+            if cells[end]["port_directions"].get(p) == "output"
+            for b in bs
+        }
         for sink in cells.values():
             if LOGIC_CELLS.match(sink["type"]):
                 continue
-            hit = [p for p, bs in sink["connections"].items()
-                   if sink["port_directions"].get(p) == "input" and end_bits & set(bs)]
+            hit = [
+                p
+                for p, bs in sink["connections"].items()
+                if sink["port_directions"].get(p) == "input" and end_bits & set(bs)
+            ]
             if hit:
-                q = [b for p, bs in sink["connections"].items()
-                     if sink["port_directions"].get(p) == "output" for b in bs]
+                q = [
+                    b
+                    for p, bs in sink["connections"].items()
+                    if sink["port_directions"].get(p) == "output"
+                    for b in bs
+                ]
                 path.append(f"-> {sink['type']}.{hit[0]} {names.get(q[0], '?') if q else ''}")
                 break
         paths.append(path)

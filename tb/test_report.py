@@ -11,6 +11,7 @@ import bench_sim
 import pytest
 import report
 import synth_summary
+from harness import REPO
 
 SMALL = {"width": 64, "height": 32}
 REQUIRED = {
@@ -86,7 +87,7 @@ def check_report(summary, info, tmp_path):
     assert both.count("<!-- synth:begin") == 1 and both.count("<!-- bench:end -->") == 1
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
-    assert "| **total** |  | **166 742** |" in both
+    assert "| **total** |  | **169 631** |" in both
     # Rewriting the synthesis section keeps the bench one.
     report.update_synth(summary, info, path)
     assert path.read_text() == both
@@ -95,8 +96,12 @@ def check_report(summary, info, tmp_path):
 def test_region_memory_matches_docs():
     """The breakdown of docs/nms.md, Memory (MAX_WIDTH 1920, 1080 rows, 12-bit score)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
-    assert [r["bits"] for r in mem["breakdown"]] == [21120, 38520, 52002, 19260, 35840]
-    assert mem["total_bits"] == 166742
+    assert [r["bits"] for r in mem["breakdown"]] == [21120, 41409, 52002, 19260, 35840]
+    assert mem["total_bits"] == 169631
+    docs = (REPO / "docs" / "nms.md").read_text()
+    for row in mem["breakdown"]:
+        assert f"| {row['bits']:,} |".replace(",", " ") in docs, row
+    assert f"**{mem['total_bits']:,}**".replace(",", " ") in docs
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200
 
