@@ -107,7 +107,9 @@ def run_cocotb(
             parameters=generics,
             test_args=["--std=08", f"--workdir={build_dir}"],
             # GHDL run-time options go after the top-level name, where plusargs go.
-            plusargs=["--ieee-asserts=disable-at-0"],
+            # An RTL assertion of severity error (a broken input contract)
+            # stops the simulation, so the test fails.
+            plusargs=["--ieee-asserts=disable-at-0", "--assert-level=error"],
             testcase=testcase,
             seed=seed,
             extra_env={"TB_GENERICS": repr(generics), **(env or {})},

@@ -11,7 +11,10 @@
 -- score 0) follows the frame's last record, also for a frame without corners.
 --
 -- The input is the detector's per-pixel stream: well formed (every line
--- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof).
+-- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof,
+-- the next pixel the next frame's first). The scan knows where a frame
+-- starts from that; in_sof is only checked, in simulation (an assertion of
+-- severity error when it disagrees).
 -- When the table falls behind (dense corners, long merges) the queue fills
 -- and in_ready drops: nothing is dropped.
 library ieee;

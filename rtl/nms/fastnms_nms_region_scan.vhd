@@ -24,6 +24,11 @@
 -- union, end, pass, eof. After the frame's last pixel the scan runs one
 -- flush pass of W pixels without corners, so every run of the last row
 -- passes and every region closes before the eof event.
+--
+-- Timing: every decision starts at a flip-flop. The label line is read three
+-- columns ahead into a register (frames 2 or 3 wide take the label from the
+-- last ones written instead), and the frame's first pixel is known from a
+-- register (the input is well formed), not from in_sof.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -92,7 +97,9 @@ architecture rtl of fastnms_nms_region_scan is
   signal flushing   : std_logic;
   signal flush_last : std_logic;
   -- The label line and the labels around the pixel in the row above:
-  -- line_a = column x-1, line_b = column x, rd_data = column x+1.
+  -- line_a = column x-1, line_b = column x, line_c = column x+1, all three
+  -- in registers (the RAM is read one column further ahead, so that no
+  -- decision starts at a RAM output).
   signal rd_ptr  : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
   signal rd_addr : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
   signal rd_data : std_logic_vector(LABEL_BITS downto 0);
@@ -101,12 +108,14 @@ architecture rtl of fastnms_nms_region_scan is
   signal a_on    : std_logic;
   signal b_on    : std_logic;
   signal c_lab   : label_t;
+  signal c_reg   : std_logic_vector(LABEL_BITS downto 0);
   signal wr_data : std_logic_vector(LABEL_BITS downto 0);
-  -- Frames 1 or 2 pixels wide read the column written in the same clock:
-  -- that label comes from a register instead (W = 2), or from the pixel
-  -- itself (W = 1).
+  -- Frames 1 to 3 pixels wide would read a column before it is written:
+  -- its label comes from the last one written instead (W = 2, and W = 3 one
+  -- clock earlier), or from the pixel itself (W = 1).
   signal narrow  : std_logic;
   signal single  : std_logic;
+  signal three   : std_logic;
   signal last_wr : std_logic_vector(LABEL_BITS downto 0);
   signal line_c  : std_logic_vector(LABEL_BITS downto 0);
   -- The current run (the pixel to the left, when it is a corner).
@@ -150,6 +159,7 @@ architecture rtl of fastnms_nms_region_scan is
   signal do_end      : std_logic;
   signal do_eof      : std_logic;
   signal start       : std_logic;
+  signal expect_sof  : std_logic;
   signal px          : unsigned(ev_x'range);
   signal py          : unsigned(ev_y'range);
 
@@ -164,16 +174,17 @@ begin
 
   -- Pixels are taken while the event queue has room for two beats (one may
   -- sit in the event register) and a spare label is ready; the flush pass
-  -- steps whenever the queue has room.
+  -- steps whenever the queue has room. The input is well formed, so the
+  -- first pixel after reset or after a flush pass starts a frame: a register
+  -- (expect_sof) says so, and in_sof only checks it (in simulation). The
+  -- position (x, y) restarts at the end of a frame, so it is (0, 0) there.
   pixel_ready <= ev_room and spare_valid and not flushing;
   in_ready    <= pixel_ready;
   advance     <= (in_valid and pixel_ready) or (flushing and ev_room);
   corner      <= in_corner and not flushing;
-  start       <= in_sof and not flushing;
-  px          <= (others => '0') when start = '1' else
-                 x;
-  py          <= (others => '0') when start = '1' else
-                 y;
+  start       <= expect_sof and not flushing;
+  px          <= x;
+  py          <= y;
   last_col    <= flush_last when flushing = '1' else
                  in_eol;
 
@@ -181,7 +192,7 @@ begin
   -- column x+1 from the RAM; each with a flag "a corner is there" (the RAM
   -- word's top bit), so that no label needs comparing with zero.
   line_c <= last_wr when narrow = '1' else
-            rd_data;
+            c_reg;
   above  <= not (first_row or start);
   -- A pixel is next to a run above: flags masked at the frame's first row
   -- and at both ends of a row; A and C only under 8-connectivity.
@@ -284,10 +295,11 @@ begin
 
   end process event_register;
 
-  -- Read column x+2 while column x decides: it is column x+1 of the next step.
-  -- At the start of a frame: column 2 mod W.
+  -- Read column x+3 while column x decides: it reaches c_reg one step later
+  -- and is column x+1 two steps later. At the start of a frame: column 3 mod W.
   rd_addr <= rd_ptr when start = '0' else
-             to_unsigned(2, rd_addr'length) when cfg_width > 2 else
+             to_unsigned(3, rd_addr'length) when cfg_width > 3 else
+             to_unsigned(1, rd_addr'length) when cfg_width = 2 else
              (others => '0');
 
   state : process (clk) is
@@ -304,16 +316,22 @@ begin
           b_on   <= wr_data(LABEL_BITS);
         end if;
         last_wr <= wr_data;
+        if three = '1' then
+          c_reg <= last_wr;
+        else
+          c_reg <= rd_data;
+        end if;
 
         if start = '1' then
           width_m1 <= cfg_width - 1;
           width_m2 <= cfg_width - 2;
           narrow   <= to_sl(cfg_width <= 2);
           single   <= to_sl(cfg_width = 1);
-          -- Column 3 mod W.
-          if cfg_width > 3 then
-            rd_ptr <= to_unsigned(3, rd_ptr'length);
-          elsif cfg_width = 2 then
+          three    <= to_sl(cfg_width = 3);
+          -- Column 4 mod W.
+          if cfg_width > 4 then
+            rd_ptr <= to_unsigned(4, rd_ptr'length);
+          elsif cfg_width = 3 then
             rd_ptr <= to_unsigned(1, rd_ptr'length);
           else
             rd_ptr <= (others => '0');
@@ -341,13 +359,9 @@ begin
           if flushing = '0' then
             y         <= y + 1;
             first_row <= '0';
-            if start = '1' then
-              y <= to_unsigned(1, y'length);
-            end if;
+          else
+            y <= (others => '0');
           end if;
-        elsif start = '1' then
-          x <= to_unsigned(1, x'length);
-          y <= (others => '0');
         else
           x <= x + 1;
         end if;
@@ -363,7 +377,15 @@ begin
           end if;
         end if;
       end if;
+      if advance = '1' then
+        if flushing = '1' then
+          expect_sof <= flush_last;
+        else
+          expect_sof <= '0';
+        end if;
+      end if;
       if rst = '1' then
+        expect_sof <= '1';
         run_on     <= '0';
         flushing   <= '0';
         flush_last <= '0';
@@ -375,10 +397,29 @@ begin
         width_m1   <= (others => '0');
         narrow     <= '0';
         single     <= '0';
+        three      <= '0';
       end if;
     end if;
 
   end process state;
+
+  -- The input contract, checked in simulation: in_sof on exactly the pixel
+  -- the scan expects to start a frame.
+  -- pragma translate_off
+  contract : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if rst = '0' and in_valid = '1' and pixel_ready = '1' then
+        assert in_sof = start
+          report "fastnms_nms_region_scan: in_sof where no frame starts, or missing where one does"
+          severity error;
+      end if;
+    end if;
+
+  end process contract;
+
+  -- pragma translate_on
 
   label_line : entity work.fastnms_ram_sdp
     generic map (

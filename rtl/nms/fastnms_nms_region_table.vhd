@@ -13,11 +13,12 @@
 -- Labels and regions are recycled through free lists (FIFOs); labels also go
 -- to the scan as its spare label. Both are handed out through skid buffers.
 --
--- Timing: decisions are taken from registers or from flags stored in the RAM
--- words (runs = 1, has next, has prev) rather than from comparisons of RAM
--- outputs; a maximum is compared from registers and written one clock after
--- it is read. The remaining RAM-output decisions (the union's "same region"
--- comparison, the next state after a pass) set the block's clock rate.
+-- Timing: the label tables are read through the block RAMs' output
+-- registers (two clocks per read), so every decision starts at a flip-flop;
+-- "runs = 1", "has next" and "has prev" are flag bits stored in the words; a
+-- maximum is compared from registers and written one clock after it is read.
+-- The region tables (read once per step, into registers or straight into a
+-- write) keep one-clock reads.
 --
 -- Events, in this order within one beat:
 --   new    label l starts with one run, in a fresh region whose best is the run's first pixel
@@ -29,8 +30,10 @@
 --          leaves its region's list and returns to the free list; a region
 --          whose list is empty is closed and its record goes out
 --   eof    the end-of-frame beat goes out
--- Clocks per event beat: 1, plus 1 for new, 5 + 2 per label moved for a
--- union, 3 for end, 2 for pass (3 and the output handshake when a region closes).
+-- Clocks per event beat: 1, plus 1 for new, 5 + 3 per label moved for a
+-- union (4 when both labels are already in one region), 4 for end, 3 for
+-- pass (4 and the output handshake when a region closes); a step whose label
+-- read the step before issued is one clock shorter.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -87,8 +90,9 @@ architecture rtl of fastnms_nms_region_table is
   constant NONE : label_t := (others => '0');
 
   type state_t is (
-    fetch, new_run, union_a, union_b, union_cmp, union_read_b, union_link, walk, walk_next,
-    end_read, end_count, end_best, pass_read, pass_count, pass_emit, eof_emit
+    fetch, new_run, union_a, union_b, union_wait, union_cmp, union_link, walk, walk_wait,
+    walk_next, end_read, end_wait, end_count, end_best, pass_read, pass_wait, pass_count,
+    pass_emit, eof_emit
   );
 
   -- The steps of an event beat, in order.
@@ -241,9 +245,9 @@ architecture rtl of fastnms_nms_region_table is
     if next_state = union_a then
       return union_b;
     elsif next_state = end_read then
-      return end_count;
+      return end_wait;
     elsif next_state = pass_read then
-      return pass_count;
+      return pass_wait;
     end if;
 
     return next_state;
@@ -283,24 +287,26 @@ begin
       elsif state = union_a then
         state <= union_b;
       elsif state = union_b then
+        state <= union_wait;
+      elsif state = union_wait then
         region_a <= unsigned(lab_region);
         state    <= union_cmp;
       elsif state = union_cmp then
         region_b <= unsigned(lab_region);
+        best_a   <= unsigned(reg_best);
+        tail_a   <= unsigned(reg_tail);
         if unsigned(lab_region) = region_a then
           state <= launch(first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof));
         else
-          state <= union_read_b;
+          state <= union_link;
         end if;
-      elsif state = union_read_b then
-        best_a <= unsigned(reg_best);
-        tail_a <= unsigned(reg_tail);
-        state  <= union_link;
       elsif state = union_link then
         best_b <= unsigned(reg_best);
         cursor <= unsigned(reg_head);
         state  <= walk;
       elsif state = walk then
+        state <= walk_wait;
+      elsif state = walk_wait then
         state <= walk_next;
       elsif state = walk_next then
         cursor <= unsigned(lab_next);
@@ -310,6 +316,8 @@ begin
           state <= walk;
         end if;
       elsif state = end_read then
+        state <= end_wait;
+      elsif state = end_wait then
         state <= end_count;
       elsif state = end_count then
         region_a <= unsigned(lab_region);
@@ -318,6 +326,8 @@ begin
         best_b <= unsigned(reg_best);
         state  <= launch(first_step(STEP_PASS, e_new, e_union, e_end, e_pass, e_eof));
       elsif state = pass_read then
+        state <= pass_wait;
+      elsif state = pass_wait then
         state <= pass_count;
       elsif state = pass_count then
         region_a <= unsigned(lab_region);
@@ -423,13 +433,13 @@ begin
       lab_rd_addr <= e_label;
     elsif state = union_b then
       lab_rd_addr <= e_union_label;
+    elsif state = union_wait then
+      reg_rd_addr <= unsigned(lab_region);
     elsif state = union_cmp then
-      reg_rd_addr <= region_a;
+      reg_rd_addr <= unsigned(lab_region);
       if first_step(STEP_END, e_new, e_union, e_end, e_pass, e_eof) = pass_read then
         lab_rd_addr <= e_pass_label;
       end if;
-    elsif state = union_read_b then
-      reg_rd_addr <= region_b;
     elsif state = union_link then
       -- Region b's list goes after region a's (a's maximum: see walk).
       tail_we     <= '1';
@@ -635,7 +645,7 @@ begin
   -- ---- the tables ------------------------------------------------------------
   label_region : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => LABEL_BITS
+      DEPTH => LABELS, WIDTH => LABEL_BITS, READ_LATENCY => 2
     )
     port map (
       clk     => clk,
@@ -649,7 +659,7 @@ begin
 
   label_runs : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => RUN_BITS + 1
+      DEPTH => LABELS, WIDTH => RUN_BITS + 1, READ_LATENCY => 2
     )
     port map (
       clk     => clk,
@@ -663,7 +673,7 @@ begin
 
   label_next : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => LABEL_BITS + 1
+      DEPTH => LABELS, WIDTH => LABEL_BITS + 1, READ_LATENCY => 2
     )
     port map (
       clk     => clk,
@@ -677,7 +687,7 @@ begin
 
   label_prev : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => LABELS, WIDTH => LABEL_BITS + 1
+      DEPTH => LABELS, WIDTH => LABEL_BITS + 1, READ_LATENCY => 2
     )
     port map (
       clk     => clk,

@@ -141,7 +141,19 @@ async def random_maps(dut):
     tb = TB(dut)
     await tb.reset()
     rng = tb.np_rng
-    sizes = [(7, 7), (MAX_WIDTH, 8), (1, 1), (1, 6), (2, 5), (3, 5), (MAX_WIDTH, 1), (5, 3)]
+    sizes = [
+        (7, 7),
+        (MAX_WIDTH, 8),
+        (1, 1),
+        (1, 6),
+        (2, 5),
+        (3, 5),
+        (3, 9),
+        (4, 6),
+        (4, 9),
+        (MAX_WIDTH, 1),
+        (5, 3),
+    ]
     sizes += [(int(rng.integers(1, MAX_WIDTH + 1)), int(rng.integers(1, 24))) for _ in range(14)]
     await tb.run_maps([tb.random_map(w, h) for w, h in sizes], "random")
 

@@ -588,7 +588,12 @@ async def reset_mid_frame(dut):
     assert flags[-1] == 0b110, f"soft reset: flags of the last record {flags[-1]:b}"
     assert not any(flags[:-1])
     want = golden(busy, 5)
-    assert records == want[: len(records)] and len(records) < len(want)
+    if NMS.startswith("region"):
+        # Records leave as regions close, not in raster order; a closed
+        # region's record is final.
+        assert set(records) < set(want) and len(set(records)) == len(records)
+    else:
+        assert records == want[: len(records)] and len(records) < len(want)
     assert await tb.input_errors() == set()
     frames = [(_good(tb, w, h), 12), (_good(tb, 17, 11), 3)]
     await tb.check_frames(frames, "after soft reset")
