@@ -23,7 +23,7 @@
 -- Events, in this order within one beat:
 --   new    label l starts with one run, in a fresh region whose best is the run's first pixel
 --   union  the regions of l and u merge: the best of both, and the labels of
---          u's region re-pointed at l's region (2 clocks per label)
+--          u's region re-pointed at l's region (3 clocks per label)
 --   end    the run of l ends: its best enters l's region; l counts one more
 --          run unless credit = '1'
 --   pass   one run of p has left the line: when p holds no run any more it
