@@ -69,32 +69,32 @@ test-full: setup lint
 
 # ---- pieces -----------------------------------------------------------------
 sim: setup
-	$(PYTEST) -m "not slow" tb --ignore=tb/test_synth.py
+	$(PYTEST) -m "not slow" tb
 
 golden-test: setup
 	$(PYTEST) -m "not slow" golden/tests
 
 synth-check: setup
-	$(PYTEST) -m "not slow" tb/test_synth.py
+	$(PYTEST) -m "not slow" flows/synth/test_synth.py
 
 # Resource and logic-depth figures (yosys synth_xilinx, xc7) of the detector,
 # of the detector + 3x3 NMS and of the AXI top, both scores, at 1920 pixels.
 synth-report: setup
-	@cd tb && for score in opencv sad; do \
-	  ../$(PY) synth.py fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; \
-	  ../$(PY) synth.py fastnms_core MAX_WIDTH=1920 SCORE=$$score NMS=3x3; \
-	  ../$(PY) top/axi_synth.py MAX_WIDTH=1920 MAX_HEIGHT=1080 SCORE=$$score NMS=3x3; done
+	@for score in opencv sad; do \
+	  $(PY) -m flows.synth.synth fastnms_fast_detector MAX_WIDTH=1920 SCORE=$$score; \
+	  $(PY) -m flows.synth.synth fastnms_core MAX_WIDTH=1920 SCORE=$$score NMS=3x3; \
+	  $(PY) -m flows.synth.axi_top MAX_WIDTH=1920 MAX_HEIGHT=1080 SCORE=$$score NMS=3x3; done
 
 # The register map's generated files, from rtl/top/fastnms_regs.toml.
 regmap: setup
-	$(PY) -m fastnms.regmap
+	$(PY) -m flows.regmap.regmap
 
 # Measured results (docs/results.md): each target rewrites its own section.
 synth: setup
-	$(PY) tb/synth_summary.py --jobs $(JOBS)
+	$(PY) -m flows.synth.summary --jobs $(JOBS)
 
 bench: setup
-	$(PY) tb/bench_sim.py --jobs $(JOBS)
+	$(PY) -m flows.bench.bench --jobs $(JOBS)
 
 lint: setup
 	$(VENV)/bin/ruff check --quiet .

@@ -18,33 +18,10 @@ from pathlib import Path
 
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import get_runner
+from fastnms.sim.sources import REPO, rtl_sources
 
-REPO = Path(__file__).resolve().parents[1]
-RTL = REPO / "rtl"
 TB = REPO / "tb"
 BUILD = REPO / "build" / "sim"
-
-# Compile order: packages first, then building blocks, then what uses them.
-RTL_ORDER = ["common", "fast", "nms", "core", "top"]
-
-
-def rtl_sources() -> list[Path]:
-    """Every VHDL file of the core in compile order: packages first, then each
-    entity after the entities it instantiates (`entity work.NAME`)."""
-    files = [f for area in RTL_ORDER for f in sorted((RTL / area).glob("*.vhd"))]
-    uses = {
-        f.stem: set(re.findall(r"entity\s+work\.(\w+)", f.read_text(), re.IGNORECASE))
-        for f in files
-    }
-    ordered: list[Path] = [f for f in files if f.stem.endswith("_pkg")]
-    pending = [f for f in files if not f.stem.endswith("_pkg")]
-    while pending:
-        done = {f.stem for f in ordered}
-        ready = [f for f in pending if uses[f.stem] <= done]
-        assert ready, f"circular or unknown instantiation among {[f.name for f in pending]}"
-        ordered += ready
-        pending = [f for f in pending if f not in ready]
-    return ordered
 
 
 def test_seed(name: str) -> int:
@@ -70,7 +47,7 @@ def run_cocotb(
 ) -> None:
     """Build `toplevel` with `generics` and run the cocotb tests of `module`.
 
-    `module` is a Python module in tb/ or one of its folders; `env` reaches the
+    `module` names a Python module in tb/ or one of its folders (`axi_tb`); `env` reaches the
     testbench as environment variables. Fails unless at least one test ran and
     none failed.
     """
@@ -81,12 +58,13 @@ def run_cocotb(
     test_dir = build_dir / _slug(name)
     test_dir.mkdir(parents=True, exist_ok=True)
 
-    module_dirs = sorted({str(p.parent) for p in TB.rglob(f"{module}.py")})
-    assert module_dirs, f"no testbench module {module}.py under tb/"
-    # The runner hands sys.path to the simulator's Python as PYTHONPATH.
-    for path in [*module_dirs, str(TB)]:
-        if path not in sys.path:
-            sys.path.insert(0, path)
+    found = sorted(TB.rglob(f"{module}.py"))
+    assert len(found) == 1, f"{len(found)} testbench modules {module}.py under tb/"
+    dotted = ".".join(found[0].relative_to(REPO).with_suffix("").parts)
+    # The runner hands sys.path to the simulator's Python as PYTHONPATH: the
+    # testbenches are the package `tb` of the repository root.
+    if str(REPO) not in sys.path:
+        sys.path.insert(0, str(REPO))
 
     runner = get_runner("ghdl")
     # Build under an exclusive lock, simulate under a shared one: a parallel
@@ -102,7 +80,7 @@ def run_cocotb(
         )
         fcntl.flock(lock, fcntl.LOCK_SH)
         results = runner.test(
-            test_module=module,
+            test_module=dotted,
             hdl_toplevel=toplevel,
             parameters=generics,
             test_args=["--std=08", f"--workdir={build_dir}"],

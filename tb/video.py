@@ -12,7 +12,8 @@ import cocotb
 import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge
-from stream import StreamSink, StreamSource, value
+
+from tb.stream import StreamSink, StreamSource, value
 
 PERIOD_NS = 10
 

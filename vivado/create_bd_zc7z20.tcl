@@ -31,7 +31,7 @@
 # SCORE_VIDEO stays false here: m_axis_score would need its own DMA.
 #
 # Written for Vivado 2020.2 or later; not run where this project is developed
-# (no Vivado there). tb/test_vivado_tcl.py runs it under plain Tcl with every
+# (no Vivado there). flows/vivado_check/test_vivado_tcl.py runs it under plain Tcl with every
 # Vivado command stubbed out.
 
 source [file join [file dirname [info script]] fastnms_common.tcl]

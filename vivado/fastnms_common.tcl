@@ -1,7 +1,7 @@
 # Settings shared by the Vivado scripts of this folder: paths, the IP's VLNV,
 # the target part, the RTL file list and a small option parser.
 #
-# Plain Tcl 8.5 with no Vivado command, so tb/test_vivado_tcl.py runs it as it
+# Plain Tcl 8.5 with no Vivado command, so flows/vivado_check/test_vivado_tcl.py runs it as it
 # is under tclsh (or Python's tkinter). Every path is derived from this
 # file's own location: the scripts work from any directory.
 
@@ -10,7 +10,7 @@ namespace eval fastnms {
     variable repo       [file dirname $script_dir]
 
     # The packaged IP: vendor:library:name:version. The version follows
-    # pyproject.toml's major.minor (checked by tb/test_vivado_tcl.py).
+    # pyproject.toml's major.minor (checked by flows/vivado_check/test_vivado_tcl.py).
     variable vendor  fastnms
     variable library vision
     variable name    fastnms_axi
@@ -51,7 +51,7 @@ proc fastnms::read_text {path} {
 # Every rtl/<area>/*.vhd in compile order: each file after the files that
 # define the packages it uses (use work.X) and the entities it instantiates
 # (entity work.X); otherwise in folder order, then by name. The same rule as
-# tb/harness.py, so a new file under rtl/ is picked up with no edit here.
+# sim/sources.py, so a new file under rtl/ is picked up with no edit here.
 proc fastnms::rtl_files {} {
     variable areas
     set files {}

@@ -20,7 +20,7 @@
 # fastnms_axi (VLNV fastnms:vision:fastnms_axi:0.1).
 #
 # Written for Vivado 2020.2 or later; not run where this project is
-# developed (no Vivado there). tb/test_vivado_tcl.py runs it under plain Tcl
+# developed (no Vivado there). flows/vivado_check/test_vivado_tcl.py runs it under plain Tcl
 # with every Vivado command stubbed out, which checks its Tcl, its arguments
 # and the file list, not Vivado's answers.
 
@@ -51,7 +51,7 @@ create_project -force fastnms_package_ip $proj_dir -part $fastnms::part
 set_property target_language VHDL [current_project]
 
 # Every rtl/**/*.vhd in compile order (fastnms::rtl_files), VHDL-2008; the
-# wrapper, VHDL(-93), is the top level. tb/test_vivado_tcl.py checks that the
+# wrapper, VHDL(-93), is the top level. flows/vivado_check/test_vivado_tcl.py checks that the
 # wrapper is VHDL-93 and elaborates with the RTL.
 set rtl_files [fastnms::rtl_files]
 add_files -norecurse [concat $rtl_files [list $wrapper_file]]

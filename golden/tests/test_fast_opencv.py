@@ -11,9 +11,9 @@ from pathlib import Path
 import cv2
 import numpy as np
 import pytest
-from fastnms.fast import CIRCLE_OFFSETS, fast_maps
-from fastnms.image import load_grey
-from fastnms.model import NMS_MODES, SCORES, detect
+from fastnms.golden.fast import CIRCLE_OFFSETS, fast_maps
+from fastnms.golden.image import load_grey
+from fastnms.golden.model import NMS_MODES, SCORES, detect
 
 THRESHOLDS_EDGE = (0, 1, 10, 20, 50, 254, 255)
 

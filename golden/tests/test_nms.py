@@ -6,8 +6,8 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
-from fastnms.nms import nms_3x3, nms_none, nms_region
-from regions import SHAPES, grid, records, serpentine, square_spiral
+from fastnms.golden.nms import nms_3x3, nms_none, nms_region
+from fastnms.testing.regions import SHAPES, grid, records, serpentine, square_spiral
 from scipy import ndimage
 
 # ---- independent region references ------------------------------------------------------

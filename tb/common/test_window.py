@@ -1,7 +1,8 @@
 """pytest entry: fastnms_window under GHDL for several generic sets and pause patterns."""
 
 import pytest
-from harness import run_cocotb
+
+from tb.harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 20, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 1}
 ODD_LAT2 = {"MAX_WIDTH": 37, "MAX_HEIGHT": 4095, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 2}

@@ -9,7 +9,8 @@ import random
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
-from video import PERIOD_NS, VideoTB, frame_beats, split_frames
+
+from tb.video import PERIOD_NS, VideoTB, frame_beats, split_frames
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]

@@ -12,10 +12,11 @@ from pathlib import Path
 import cocotb
 import cv2
 import numpy as np
-import testimages
 from cocotb.triggers import ClockCycles
-from fastnms.model import detect
-from video import VideoTB, frame_beats, record_mismatch, split_records
+from fastnms.golden.model import detect
+from fastnms.testing import images as testimages
+
+from tb.video import VideoTB, frame_beats, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]

@@ -4,8 +4,9 @@ photographs, against the golden model and, for opencv + 3x3, OpenCV."""
 import json
 
 import pytest
-import testimages
-from harness import run_cocotb
+from fastnms.testing import images as testimages
+
+from tb.harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}

@@ -10,9 +10,10 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-import testimages
-from fastnms.fast import fast_maps
-from video import PERIOD_NS, VideoTB, split_frames
+from fastnms.golden.fast import fast_maps
+from fastnms.testing import images as testimages
+
+from tb.video import PERIOD_NS, VideoTB, split_frames
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]

@@ -3,8 +3,9 @@
 import json
 
 import pytest
-import testimages
-from harness import run_cocotb
+from fastnms.testing import images as testimages
+
+from tb.harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 1}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 4095, "READ_LATENCY": 2}

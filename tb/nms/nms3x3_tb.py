@@ -9,8 +9,9 @@ import os
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
-from fastnms.nms import nms_3x3
-from video import VideoTB, record_mismatch, split_records
+from fastnms.golden.nms import nms_3x3
+
+from tb.video import VideoTB, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]

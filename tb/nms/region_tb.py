@@ -13,9 +13,10 @@ import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
 from cocotb.utils import get_sim_time
-from fastnms.nms import nms_region
-from regions import SHAPES, grid, serpentine, square_spiral
-from video import PERIOD_NS, VideoTB, record_mismatch, split_records
+from fastnms.golden.nms import nms_region
+from fastnms.testing.regions import SHAPES, grid, serpentine, square_spiral
+
+from tb.video import PERIOD_NS, VideoTB, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -222,8 +223,8 @@ async def photo_maps(dut):
     """FAST output of whole photographs (TB_PHOTOS: JSON list of [path, threshold,
     score]): records against the golden, and clocks per pixel logged. With
     TB_MAX_CLOCKS_PER_PIXEL set, each frame is held to it."""
-    from fastnms.fast import fast_maps
-    from fastnms.image import load_grey
+    from fastnms.golden.fast import fast_maps
+    from fastnms.golden.image import load_grey
 
     photos = json.loads(os.environ.get("TB_PHOTOS", "[]"))
     limit = float(os.environ.get("TB_MAX_CLOCKS_PER_PIXEL", "0"))

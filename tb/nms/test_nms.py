@@ -3,8 +3,9 @@
 import json
 
 import pytest
-import testimages
-from harness import run_cocotb
+from fastnms.testing import images as testimages
+
+from tb.harness import run_cocotb
 
 
 @pytest.mark.parametrize("score_bits", [8, 12])

