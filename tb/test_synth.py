@@ -13,8 +13,6 @@ MAX_LOGIC_LEVELS = 4
 # NMS table decides its next state from RAM outputs in the same clock (see
 # docs/nms.md); pipelining it is open work.
 DEEPER = {
-    # Level counter: INV (bit 0 of +1) + 3 CARRY4 + the select LUT.
-    "fastnms_stream_fifo": 5,
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc chains the window generators' counter controls (register -> 4
     # LUTs -> the counters' reset/enable) differently. See docs/nms.md.

@@ -86,9 +86,6 @@ architecture rtl of fastnms_nms_region is
   signal s_y           : unsigned(Y_BITS - 1 downto 0);
   signal s_eof         : std_logic;
   signal s_data        : std_logic_vector(EV_BITS - 1 downto 0);
-  signal q_valid       : std_logic;
-  signal q_ready       : std_logic;
-  signal q_data        : std_logic_vector(EV_BITS - 1 downto 0);
   signal t_valid       : std_logic;
   signal t_ready       : std_logic;
   signal t_data        : std_logic_vector(EV_BITS - 1 downto 0);
@@ -142,7 +139,12 @@ begin
             std_logic_vector(s_label) & std_logic_vector(s_score) &
             std_logic_vector(s_x) & std_logic_vector(s_y);
 
-  event_queue : entity work.fastnms_stream_fifo
+  -- The queue's head leaves from flip-flops (fastnms_fifo's output skid
+  -- buffer) rather than from its block RAM: the table decides its first step
+  -- and its first read address from it. The scan pushes one clock after its
+  -- decision, so it looks at in_room2 (room for this clock's beat and the
+  -- next one), never at in_ready.
+  event_queue : entity work.fastnms_fifo
     generic map (
       DEPTH => EVENT_DEPTH,
       WIDTH => EV_BITS
@@ -154,26 +156,10 @@ begin
       in_ready  => open,
       in_room2  => s_room,
       in_data   => s_data,
-      out_valid => q_valid,
-      out_ready => q_ready,
-      out_data  => q_data
-    );
-
-  -- The queue's head from flip-flops rather than from its block RAM: the
-  -- table decides its first step and its first read address from it.
-  event_register : entity work.fastnms_skid_buffer
-    generic map (
-      WIDTH => EV_BITS
-    )
-    port map (
-      clk       => clk,
-      rst       => rst,
-      in_valid  => q_valid,
-      in_ready  => q_ready,
-      in_data   => q_data,
       out_valid => t_valid,
       out_ready => t_ready,
-      out_data  => t_data
+      out_data  => t_data,
+      busy      => open
     );
 
   unpack : block is
