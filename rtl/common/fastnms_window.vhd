@@ -181,6 +181,13 @@ begin
     report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be at least WINDOW"
     severity failure;
 
+  assert READ_LATENCY <= 2
+    report "fastnms_window: READ_LATENCY must be 1 or 2"
+    severity failure;
+  assert MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be below 65536"
+    severity failure;
+
   -- The pipeline moves whenever the consumer is ready: out_ready is the
   -- advance enable (no bubble is squeezed out while it is low).
   advance <= out_ready;

@@ -123,6 +123,13 @@ begin
     report "fastnms_fast_detector: SCORE must be ""opencv"" or ""sad"""
     severity failure;
 
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_fast_detector: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
+  assert READ_LATENCY <= 2
+    report "fastnms_fast_detector: READ_LATENCY must be 1 or 2"
+    severity failure;
+
   window : entity work.fastnms_window
     generic map (
       MAX_WIDTH    => MAX_WIDTH,

@@ -57,6 +57,10 @@ architecture rtl of fastnms_nms_none is
 
 begin
 
+  assert MAX_WIDTH >= 2 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_nms_none: MAX_WIDTH must be in 2 .. 65535 and MAX_HEIGHT below 65536"
+    severity failure;
+
   accept   <= in_valid and advance;
   in_ready <= advance;
 

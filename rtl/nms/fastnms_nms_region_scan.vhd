@@ -175,6 +175,10 @@ begin
     report "fastnms_nms_region_scan: MAX_WIDTH must be at least 2"
     severity failure;
 
+  assert LABEL_BITS >= 2
+    report "fastnms_nms_region_scan: LABEL_BITS must be at least 2"
+    severity failure;
+
   -- Pixels are taken while the event queue has room for two beats (one may
   -- sit in the event register) and a spare label is ready; the flush pass
   -- steps whenever the queue has room. The input is well formed, so the

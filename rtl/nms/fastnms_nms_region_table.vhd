@@ -260,8 +260,12 @@ architecture rtl of fastnms_nms_region_table is
 
 begin
 
-  assert LABELS <= 2 ** LABEL_BITS
-    report "fastnms_nms_region_table: LABELS does not fit in LABEL_BITS"
+  assert LABEL_BITS = clog2(LABELS)
+    report "fastnms_nms_region_table: LABEL_BITS must be clog2(LABELS)"
+    severity failure;
+
+  assert LABELS >= 3
+    report "fastnms_nms_region_table: LABELS must be at least 3"
     severity failure;
 
   event_key <= e_score & not e_y & not e_x;

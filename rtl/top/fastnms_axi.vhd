@@ -268,6 +268,10 @@ begin
     report "fastnms_axi: CORNER_FIFO_DEPTH must be in 2 .. 65535"
     severity failure;
 
+  assert NMS = "3x3" or NMS = "none" or NMS = "region4" or NMS = "region8"
+    report "fastnms_axi: NMS must be ""3x3"", ""region4"", ""region8"" or ""none"""
+    severity failure;
+
   -- ---- reset ---------------------------------------------------------------
 
   reset_sync : process (aclk) is

@@ -77,6 +77,10 @@ architecture rtl of fastnms_video_check is
 
 begin
 
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_video_check: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
+
   framed <= p_valid and (p_sof or active);
 
   checks : process (clk) is
