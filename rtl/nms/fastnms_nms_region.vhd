@@ -30,8 +30,8 @@ entity fastnms_nms_region is
     MAX_HEIGHT   : positive := 4095;
     SCORE_BITS   : positive := 8;
     CONNECTIVITY : positive := 8;
-    -- Labels (and regions) in the tables, label 0 meaning none: at most
-    -- MAX_WIDTH / 2 + 1 runs are in the label line at once.
+    -- Labels (and regions) in the tables, label 0 meaning none. At least
+    -- MAX_WIDTH / 2 + 3 (the default): see the assertion below.
     LABELS      : positive := MAX_WIDTH / 2 + 3;
     EVENT_DEPTH : positive := 512
   );
@@ -92,8 +92,22 @@ architecture rtl of fastnms_nms_region is
 
 begin
 
-  assert LABELS >= 3
-    report "fastnms_nms_region: LABELS must be at least 3"
+  -- LABELS: the scan takes a pixel only with a spare label ready. While
+  -- it decides a pixel, up to MAX_WIDTH / 2 + 1 labels hold runs of the label
+  -- line whose pass it has not yet sent (the row above from the pixel on,
+  -- the row so far: a 4-connected checkerboard holds that many distinct
+  -- labels at its second pixel of a row); with ids 1 .. LABELS - 1, one more
+  -- must remain for the spare. Labels already passed come back through the
+  -- table without the scan's help, so they only slow it down. With
+  -- MAX_WIDTH / 2 + 2 labels that checkerboard stalls in_ready forever.
+  assert LABELS >= MAX_WIDTH / 2 + 3
+    report "fastnms_nms_region: LABELS must be at least MAX_WIDTH / 2 + 3"
+    severity failure;
+  assert CONNECTIVITY = 4 or CONNECTIVITY = 8
+    report "fastnms_nms_region: CONNECTIVITY must be 4 or 8"
+    severity failure;
+  assert EVENT_DEPTH <= 2 ** 16
+    report "fastnms_nms_region: EVENT_DEPTH must be at most 65536"
     severity failure;
 
   scan : entity work.fastnms_nms_region_scan
