@@ -138,7 +138,7 @@ foreach busif {s_axis_video m_axis_corners m_axis_score s_axi_ctrl} {
     }
 }
 
-# The AXI4-Lite register block: 8 address bits (docs/top.md), mapped as 4 KiB,
+# The AXI4-Lite register block: 8 address bits (docs/fastnms_axi.md), mapped as 4 KiB,
 # the smallest block the Zynq address map assigns.
 set memory_map [ipx::get_memory_maps -quiet s_axi_ctrl -of_objects $core]
 if {![llength $memory_map]} {

@@ -10,15 +10,14 @@ from flows.synth.synth import entities, ghdl_synth, summary, yosys_xc7
 LATCHES = ("LDCE", "LDPE")
 # The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
 MAX_LOGIC_LEVELS = 4
-# Known exceptions, recorded so that they cannot grow unnoticed: the region
-# NMS table decides its next state from RAM outputs in the same clock (see
-# docs/nms.md); pipelining it is open work.
+# Known exceptions, recorded so that they cannot grow unnoticed: yosys maps the
+# region NMS's scan decision and its table's next-state and RAM-address
+# multiplexers into 6-7 LUTs (docs/fastnms_nms_region.md); the region NMS is to
+# be redesigned.
 DEEPER = {
-    # Level counter: INV (bit 0 of +1) + 3 CARRY4 + the select LUT.
-    "fastnms_stream_fifo": 5,
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc chains the window generators' counter controls (register -> 4
-    # LUTs -> the counters' reset/enable) differently. See docs/nms.md.
+    # LUTs -> the counters' reset/enable) differently (docs/fastnms_core.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
     "fastnms_nms_region": 7,
     "fastnms_nms_region_table": 7,

@@ -56,6 +56,10 @@ begin
     report "fastnms_line_buffer: MAX_WIDTH must be at least 2"
     severity failure;
 
+  assert READ_LATENCY <= 2
+    report "fastnms_line_buffer: READ_LATENCY must be 1 or 2"
+    severity failure;
+
   -- The pixel and its column travel beside the RAM read.
   delay : process (clk) is
   begin

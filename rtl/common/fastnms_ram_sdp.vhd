@@ -50,6 +50,10 @@ begin
     report "fastnms_ram_sdp: READ_LATENCY must be 1 or 2"
     severity failure;
 
+  assert STYLE = "block" or STYLE = "distributed" or STYLE = "auto"
+    report "fastnms_ram_sdp: STYLE must be ""block"", ""distributed"" or ""auto"""
+    severity failure;
+
   write_port : process (clk) is
   begin
 

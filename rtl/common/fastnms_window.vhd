@@ -156,8 +156,9 @@ architecture rtl of fastnms_window is
   signal take    : std_logic;
   signal counted : std_logic;
   signal emit    : std_logic;
-  -- Counter controls: a clear beats a step, so that both map onto the
-  -- flip-flops' reset and enable pins and the next value is the carry chain.
+  -- Position controls (fastnms_position): a clear beats a step, so that both
+  -- map onto the flip-flops' reset and enable pins and the next value is the
+  -- carry chain.
   signal in_x_clear  : std_logic;
   signal in_x_step   : std_logic;
   signal in_y_clear  : std_logic;
@@ -178,6 +179,13 @@ begin
     severity failure;
   assert MAX_WIDTH >= WINDOW and MAX_HEIGHT >= WINDOW
     report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be at least WINDOW"
+    severity failure;
+
+  assert READ_LATENCY <= 2
+    report "fastnms_window: READ_LATENCY must be 1 or 2"
+    severity failure;
+  assert MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be below 65536"
     severity failure;
 
   -- The pipeline moves whenever the consumer is ready: out_ready is the
@@ -221,33 +229,39 @@ begin
   out_y_clear <= rst or (advance and emit and out_x_last and out_y_last);
   out_y_step  <= advance and emit and out_x_last;
 
-  counters : process (clk) is
-  begin
+  input_position : entity work.fastnms_position
+    generic map (
+      X_BITS => x_t'length,
+      Y_BITS => y_t'length
+    )
+    port map (
+      clk     => clk,
+      x_clear => in_x_clear,
+      x_start => '0',
+      x_step  => in_x_step,
+      y_clear => in_y_clear,
+      y_start => '0',
+      y_step  => in_y_step,
+      x       => in_x,
+      y       => in_y
+    );
 
-    if rising_edge(clk) then
-      if in_x_clear = '1' then
-        in_x <= (others => '0');
-      elsif in_x_step = '1' then
-        in_x <= in_x + 1;
-      end if;
-      if in_y_clear = '1' then
-        in_y <= (others => '0');
-      elsif in_y_step = '1' then
-        in_y <= in_y + 1;
-      end if;
-      if out_x_clear = '1' then
-        beat_x <= (others => '0');
-      elsif out_x_step = '1' then
-        beat_x <= beat_x + 1;
-      end if;
-      if out_y_clear = '1' then
-        beat_y <= (others => '0');
-      elsif out_y_step = '1' then
-        beat_y <= beat_y + 1;
-      end if;
-    end if;
-
-  end process counters;
+  output_position : entity work.fastnms_position
+    generic map (
+      X_BITS => x_t'length,
+      Y_BITS => y_t'length
+    )
+    port map (
+      clk     => clk,
+      x_clear => out_x_clear,
+      x_start => '0',
+      x_step  => out_x_step,
+      y_clear => out_y_clear,
+      y_start => '0',
+      y_step  => out_y_step,
+      x       => beat_x,
+      y       => beat_y
+    );
 
   config : process (clk) is
   begin

@@ -97,6 +97,16 @@ begin
     report "fastnms_core: NMS must be ""3x3"", ""region4"", ""region8"" or ""none"""
     severity failure;
 
+  assert SCORE = "opencv" or SCORE = "sad"
+    report "fastnms_core: SCORE must be ""opencv"" or ""sad"""
+    severity failure;
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_core: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
+  assert READ_LATENCY <= 2
+    report "fastnms_core: READ_LATENCY must be 1 or 2"
+    severity failure;
+
   detector : entity work.fastnms_fast_detector
     generic map (
       MAX_WIDTH    => MAX_WIDTH,

@@ -28,7 +28,7 @@
 --   window generator -> circle differences -> segment test (3 stages)
 --                                          -> score (7 stages) -> mask -> skid buffer
 -- The result of pixel k leaves LATENCY clocks after pixel k + 3*W + 3 was
--- accepted (see docs/fast_detector.md).
+-- accepted (see docs/fastnms_fast_detector.md).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -121,6 +121,13 @@ begin
 
   assert SCORE = OPENCV_SCORE or SCORE = SAD_SCORE
     report "fastnms_fast_detector: SCORE must be ""opencv"" or ""sad"""
+    severity failure;
+
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_fast_detector: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
+  assert READ_LATENCY <= 2
+    report "fastnms_fast_detector: READ_LATENCY must be 1 or 2"
     severity failure;
 
   window : entity work.fastnms_window

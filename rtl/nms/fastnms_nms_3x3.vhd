@@ -92,6 +92,13 @@ architecture rtl of fastnms_nms_3x3 is
 
 begin
 
+  assert MAX_WIDTH >= 3 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 3 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_nms_3x3: MAX_WIDTH and MAX_HEIGHT must be in 3 .. 65535"
+    severity failure;
+  assert READ_LATENCY <= 2
+    report "fastnms_nms_3x3: READ_LATENCY must be 1 or 2"
+    severity failure;
+
   window : entity work.fastnms_window
     generic map (
       MAX_WIDTH    => MAX_WIDTH,

@@ -45,8 +45,11 @@ architecture rtl of fastnms_nms_none is
 
   -- Position of the next pixel: both counters clear through the flip-flops'
   -- reset, so the frame's first pixel finds them at (0, 0).
-  signal x : unsigned(out_x'range);
-  signal y : unsigned(out_y'range);
+  signal x       : unsigned(out_x'range);
+  signal y       : unsigned(out_y'range);
+  signal x_clear : std_logic;
+  signal y_clear : std_logic;
+  signal y_step  : std_logic;
 
   signal s1_valid : std_logic;
   signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS downto 0);
@@ -54,26 +57,33 @@ architecture rtl of fastnms_nms_none is
 
 begin
 
+  assert MAX_WIDTH >= 2 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_nms_none: MAX_WIDTH must be in 2 .. 65535 and MAX_HEIGHT below 65536"
+    severity failure;
+
   accept   <= in_valid and advance;
   in_ready <= advance;
 
-  position : process (clk) is
-  begin
+  x_clear <= rst or (accept and in_eol);
+  y_clear <= rst or (accept and in_eof);
+  y_step  <= accept and in_eol;
 
-    if rising_edge(clk) then
-      if rst = '1' or (accept = '1' and in_eol = '1') then
-        x <= (others => '0');
-      elsif accept = '1' then
-        x <= x + 1;
-      end if;
-      if rst = '1' or (accept = '1' and in_eof = '1') then
-        y <= (others => '0');
-      elsif accept = '1' and in_eol = '1' then
-        y <= y + 1;
-      end if;
-    end if;
-
-  end process position;
+  position : entity work.fastnms_position
+    generic map (
+      X_BITS => out_x'length,
+      Y_BITS => out_y'length
+    )
+    port map (
+      clk     => clk,
+      x_clear => x_clear,
+      x_start => '0',
+      x_step  => accept,
+      y_clear => y_clear,
+      y_start => '0',
+      y_step  => y_step,
+      x       => x,
+      y       => y
+    );
 
   records : process (clk) is
   begin

@@ -30,8 +30,8 @@ entity fastnms_nms_region is
     MAX_HEIGHT   : positive := 4095;
     SCORE_BITS   : positive := 8;
     CONNECTIVITY : positive := 8;
-    -- Labels (and regions) in the tables, label 0 meaning none: at most
-    -- MAX_WIDTH / 2 + 1 runs are in the label line at once.
+    -- Labels (and regions) in the tables, label 0 meaning none. At least
+    -- MAX_WIDTH / 2 + 3 (the default): see the assertion below.
     LABELS      : positive := MAX_WIDTH / 2 + 3;
     EVENT_DEPTH : positive := 512
   );
@@ -86,17 +86,28 @@ architecture rtl of fastnms_nms_region is
   signal s_y           : unsigned(Y_BITS - 1 downto 0);
   signal s_eof         : std_logic;
   signal s_data        : std_logic_vector(EV_BITS - 1 downto 0);
-  signal q_valid       : std_logic;
-  signal q_ready       : std_logic;
-  signal q_data        : std_logic_vector(EV_BITS - 1 downto 0);
   signal t_valid       : std_logic;
   signal t_ready       : std_logic;
   signal t_data        : std_logic_vector(EV_BITS - 1 downto 0);
 
 begin
 
-  assert LABELS >= 3
-    report "fastnms_nms_region: LABELS must be at least 3"
+  -- LABELS: the scan takes a pixel only with a spare label ready. While
+  -- it decides a pixel, up to MAX_WIDTH / 2 + 1 labels hold runs of the label
+  -- line whose pass it has not yet sent (the row above from the pixel on,
+  -- the row so far: a 4-connected checkerboard holds that many distinct
+  -- labels at its second pixel of a row); with ids 1 .. LABELS - 1, one more
+  -- must remain for the spare. Labels already passed come back through the
+  -- table without the scan's help, so they only slow it down. With
+  -- MAX_WIDTH / 2 + 2 labels that checkerboard stalls in_ready forever.
+  assert LABELS >= MAX_WIDTH / 2 + 3
+    report "fastnms_nms_region: LABELS must be at least MAX_WIDTH / 2 + 3"
+    severity failure;
+  assert CONNECTIVITY = 4 or CONNECTIVITY = 8
+    report "fastnms_nms_region: CONNECTIVITY must be 4 or 8"
+    severity failure;
+  assert EVENT_DEPTH <= 2 ** 16
+    report "fastnms_nms_region: EVENT_DEPTH must be at most 65536"
     severity failure;
 
   scan : entity work.fastnms_nms_region_scan
@@ -142,7 +153,12 @@ begin
             std_logic_vector(s_label) & std_logic_vector(s_score) &
             std_logic_vector(s_x) & std_logic_vector(s_y);
 
-  event_queue : entity work.fastnms_stream_fifo
+  -- The queue's head leaves from flip-flops (fastnms_fifo's output skid
+  -- buffer) rather than from its block RAM: the table decides its first step
+  -- and its first read address from it. The scan pushes one clock after its
+  -- decision, so it looks at in_room2 (room for this clock's beat and the
+  -- next one), never at in_ready.
+  event_queue : entity work.fastnms_fifo
     generic map (
       DEPTH => EVENT_DEPTH,
       WIDTH => EV_BITS
@@ -154,26 +170,10 @@ begin
       in_ready  => open,
       in_room2  => s_room,
       in_data   => s_data,
-      out_valid => q_valid,
-      out_ready => q_ready,
-      out_data  => q_data
-    );
-
-  -- The queue's head from flip-flops rather than from its block RAM: the
-  -- table decides its first step and its first read address from it.
-  event_register : entity work.fastnms_skid_buffer
-    generic map (
-      WIDTH => EV_BITS
-    )
-    port map (
-      clk       => clk,
-      rst       => rst,
-      in_valid  => q_valid,
-      in_ready  => q_ready,
-      in_data   => q_data,
       out_valid => t_valid,
       out_ready => t_ready,
-      out_data  => t_data
+      out_data  => t_data,
+      busy      => open
     );
 
   unpack : block is

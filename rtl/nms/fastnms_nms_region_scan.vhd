@@ -90,6 +90,9 @@ architecture rtl of fastnms_nms_region_scan is
   -- Frame position of the pixel (or flush step) deciding now.
   signal x          : unsigned(ev_x'range);
   signal y          : unsigned(ev_y'range);
+  signal x_clear    : std_logic;
+  signal y_clear    : std_logic;
+  signal y_step     : std_logic;
   signal first_row  : std_logic;
   signal first_col  : std_logic;
   signal width_m1   : unsigned(cfg_width'range);
@@ -170,6 +173,10 @@ begin
     severity failure;
   assert MAX_WIDTH >= 2
     report "fastnms_nms_region_scan: MAX_WIDTH must be at least 2"
+    severity failure;
+
+  assert LABEL_BITS >= 2
+    report "fastnms_nms_region_scan: LABEL_BITS must be at least 2"
     severity failure;
 
   -- Pixels are taken while the event queue has room for two beats (one may
@@ -353,17 +360,8 @@ begin
         if start = '1' then
           first_row <= '1';
         end if;
-        -- Counters: the increments start from the registers (short paths).
-        if last_col = '1' then
-          x <= (others => '0');
-          if flushing = '0' then
-            y         <= y + 1;
-            first_row <= '0';
-          else
-            y <= (others => '0');
-          end if;
-        else
-          x <= x + 1;
+        if last_col = '1' and flushing = '0' then
+          first_row <= '0';
         end if;
         flush_last <= to_sl(x = width_m2) and flushing;
 
@@ -391,8 +389,6 @@ begin
         flush_last <= '0';
         first_row  <= '1';
         first_col  <= '1';
-        x          <= (others => '0');
-        y          <= (others => '0');
         rd_ptr     <= (others => '0');
         width_m1   <= (others => '0');
         narrow     <= '0';
@@ -402,6 +398,28 @@ begin
     end if;
 
   end process state;
+
+  -- The position: the increments start from the registers (short paths).
+  x_clear <= rst or (advance and last_col);
+  y_clear <= rst or (advance and last_col and flushing);
+  y_step  <= advance and last_col;
+
+  position : entity work.fastnms_position
+    generic map (
+      X_BITS => ev_x'length,
+      Y_BITS => ev_y'length
+    )
+    port map (
+      clk     => clk,
+      x_clear => x_clear,
+      x_start => '0',
+      x_step  => advance,
+      y_clear => y_clear,
+      y_start => '0',
+      y_step  => y_step,
+      x       => x,
+      y       => y
+    );
 
   -- The input contract, checked in simulation: in_sof on exactly the pixel
   -- the scan expects to start a frame.

@@ -82,6 +82,10 @@ end entity fastnms_nms_region_table;
 architecture rtl of fastnms_nms_region_table is
 
   constant KEY_BITS : positive := SCORE_BITS + Y_BITS + X_BITS;
+  -- The free lists push without looking at in_ready: they never hold more
+  -- than the LABELS - 1 ids, and fastnms_fifo's in_ready is '1' while it
+  -- holds fewer than DEPTH - 2 words (see its header).
+  constant FREE_DEPTH : positive := LABELS + 2;
 
   subtype label_t is unsigned(LABEL_BITS - 1 downto 0);
 
@@ -256,8 +260,12 @@ architecture rtl of fastnms_nms_region_table is
 
 begin
 
-  assert LABELS <= 2 ** LABEL_BITS
-    report "fastnms_nms_region_table: LABELS does not fit in LABEL_BITS"
+  assert LABEL_BITS = clog2(LABELS)
+    report "fastnms_nms_region_table: LABEL_BITS must be clog2(LABELS)"
+    severity failure;
+
+  assert LABELS >= 3
+    report "fastnms_nms_region_table: LABELS must be at least 3"
     severity failure;
 
   event_key <= e_score & not e_y & not e_x;
@@ -608,9 +616,9 @@ begin
 
   reg_supplied <= reg_ready and reg_supply_ok;
 
-  label_free_list : entity work.fastnms_stream_fifo
+  label_free_list : entity work.fastnms_fifo
     generic map (
-      DEPTH => LABELS,
+      DEPTH => FREE_DEPTH,
       WIDTH => LABEL_BITS
     )
     port map (
@@ -622,12 +630,13 @@ begin
       in_data   => std_logic_vector(e_pass_label),
       out_valid => lab_free_ok,
       out_ready => lab_free_pop,
-      out_data  => lab_free_out
+      out_data  => lab_free_out,
+      busy      => open
     );
 
-  region_free_list : entity work.fastnms_stream_fifo
+  region_free_list : entity work.fastnms_fifo
     generic map (
-      DEPTH => LABELS,
+      DEPTH => FREE_DEPTH,
       WIDTH => LABEL_BITS
     )
     port map (
@@ -639,7 +648,8 @@ begin
       in_data   => std_logic_vector(reg_free_lab),
       out_valid => reg_free_ok,
       out_ready => reg_free_pop,
-      out_data  => reg_free_out
+      out_data  => reg_free_out,
+      busy      => open
     );
 
   -- ---- the tables ------------------------------------------------------------

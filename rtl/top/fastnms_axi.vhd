@@ -1,5 +1,5 @@
 -- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
--- out, optional per-pixel score video out, AXI4-Lite control. See docs/top.md.
+-- out, optional per-pixel score video out, AXI4-Lite control. See docs/fastnms_axi.md.
 --
 --   s_axis_video ─► skid ─► gate ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
 --                            │  ▲        │  └ tap ─► skid ─► (sat) ─► m_axis_score
@@ -266,6 +266,10 @@ begin
     severity failure;
   assert CORNER_FIFO_DEPTH >= 2 and CORNER_FIFO_DEPTH < 2 ** 16
     report "fastnms_axi: CORNER_FIFO_DEPTH must be in 2 .. 65535"
+    severity failure;
+
+  assert NMS = "3x3" or NMS = "none" or NMS = "region4" or NMS = "region8"
+    report "fastnms_axi: NMS must be ""3x3"", ""region4"", ""region8"" or ""none"""
     severity failure;
 
   -- ---- reset ---------------------------------------------------------------

@@ -1,5 +1,5 @@
 -- AXI4-Lite slave and register file of fastnms_axi. The map is in
--- fastnms_regs_pkg (generated from rtl/top/fastnms_regs.toml; see docs/top.md).
+-- fastnms_regs_pkg (generated from rtl/top/fastnms_regs.toml; see docs/fastnms_axi.md).
 --
 -- Protocol: one write and one read in flight (the address and data of a
 -- write are taken in any order, each behind a registered ready). A write

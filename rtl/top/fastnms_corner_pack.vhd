@@ -59,6 +59,10 @@ architecture rtl of fastnms_corner_pack is
 
 begin
 
+  assert X_BITS + Y_BITS + SCORE_BITS + 2 <= 64
+    report "fastnms_corner_pack: X_BITS + Y_BITS + SCORE_BITS + 2 must be at most 64 (the corner word)"
+    severity failure;
+
   take     <= in_valid and skid_ready and not abort;
   in_ready <= skid_ready and not abort;
 

@@ -62,15 +62,24 @@ architecture rtl of fastnms_video_check is
   signal w_m2     : x_t;
   signal h_m2     : y_t;
 
-  signal active : std_logic; -- inside a frame
-  signal x      : x_t;       -- index in its line of the observed pixel
-  signal y      : y_t;       -- index of its line
-  signal x_last : std_logic; -- the observed pixel should end its line
-  signal late   : std_logic; -- this line is already longer than WIDTH
-  signal y_last : std_logic; -- the observed pixel's line is the last one
-  signal framed : std_logic; -- the observed pixel belongs to a frame
+  signal active  : std_logic; -- inside a frame
+  signal x       : x_t;       -- index in its line of the observed pixel
+  signal y       : y_t;       -- index of its line
+  signal x_last  : std_logic; -- the observed pixel should end its line
+  signal late    : std_logic; -- this line is already longer than WIDTH
+  signal y_last  : std_logic; -- the observed pixel's line is the last one
+  signal framed  : std_logic; -- the observed pixel belongs to a frame
+  signal x_clear : std_logic;
+  signal x_start : std_logic;
+  signal y_clear : std_logic;
+  signal y_start : std_logic;
+  signal y_step  : std_logic;
 
 begin
+
+  assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
+    report "fastnms_video_check: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
+    severity failure;
 
   framed <= p_valid and (p_sof or active);
 
@@ -95,17 +104,6 @@ begin
         h_m2   <= cfg_h_m2;
       end if;
 
-      -- x is the index of the pixel after the observed one (0 after a tlast).
-      if framed = '1' then
-        if p_eol = '1' then
-          x <= (others => '0');
-        elsif p_sof = '1' then
-          x <= to_unsigned(1, x'length);
-        else
-          x <= x + 1;
-        end if;
-      end if;
-
       if framed = '1' then
         -- At a start of frame the pixel is (0, 0): x_last, late, y_last are 0.
         if p_eol = '1' then
@@ -126,16 +124,6 @@ begin
         end if;
       end if;
 
-      if framed = '1' and p_eol = '1' then
-        if p_sof = '1' then
-          y <= to_unsigned(1, y'length);
-        else
-          y <= y + 1;
-        end if;
-      elsif framed = '1' and p_sof = '1' then
-        y <= (others => '0');
-      end if;
-
       if rst = '1' then
         p_valid         <= '0';
         active          <= '0';
@@ -150,6 +138,31 @@ begin
     end if;
 
   end process checks;
+
+  -- x is the index of the pixel after the observed one (0 after a tlast, 1
+  -- after a start of frame), y the index of its line.
+  x_clear <= framed and p_eol;
+  x_start <= framed and p_sof;
+  y_clear <= framed and p_sof and not p_eol;
+  y_start <= framed and p_sof and p_eol;
+  y_step  <= framed and p_eol;
+
+  position : entity work.fastnms_position
+    generic map (
+      X_BITS => x_t'length,
+      Y_BITS => y_t'length
+    )
+    port map (
+      clk     => clk,
+      x_clear => x_clear,
+      x_start => x_start,
+      x_step  => framed,
+      y_clear => y_clear,
+      y_start => y_start,
+      y_step  => y_step,
+      x       => x,
+      y       => y
+    );
 
   in_frame <= active;
 

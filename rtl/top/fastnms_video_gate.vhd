@@ -62,6 +62,11 @@ architecture rtl of fastnms_video_gate is
 
 begin
 
+  -- cfg_apply's copy takes a clock; the core needs the copy stable for two more.
+  assert SETTLE >= 3
+    report "fastnms_video_gate: SETTLE must be at least 3"
+    severity failure;
+
   open_gate <= not soft and to_sl(wait_count = 0);
   pass      <= open_gate and ((not in_sof and not discard) or (in_sof and enable and not cfg_pending));
   drop      <= open_gate and ((not in_sof and discard) or (in_sof and not enable));

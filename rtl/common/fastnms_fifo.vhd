@@ -1,11 +1,23 @@
 -- First-word-fall-through FIFO on one fastnms_ram_sdp, with registered
--- readies on both sides.
+-- readies on both sides: the project's one FIFO (the AXI top's corner FIFO,
+-- the region NMS's event queue and free lists).
 --
--- The RAM has 2**clog2(DEPTH) words (DEPTH rounded up to a power of two, at
--- least 4); three more words sit in the output stage (the RAM's read register
--- and a skid buffer), so more than DEPTH words fit. One word in and one out
--- per clock. A word written into an empty FIFO
--- is presented at the output three clocks after the clock it was written on.
+-- The RAM has WORDS = 2**clog2(DEPTH) words (DEPTH rounded up to a power of
+-- two, at least 4); three more words sit in the output stage (the RAM's read
+-- register and a skid buffer, so out_data comes from flip-flops). One word
+-- in and one out per clock. A word written into an empty FIFO is on the
+-- output on the fourth clock after the clock it was written on.
+--
+-- Capacity, stated as guarantees (tb/common/fifo_tb.py checks them on every
+-- clock of random traffic):
+--   in_ready is '1' on every clock on which fewer than WORDS - 2 words are
+--     inside (so at least DEPTH - 2); a producer that never holds more than
+--     WORDS - 3 words in it can push without looking at in_ready;
+--   with the output stalled it takes WORDS + 3 words (at least DEPTH);
+--   in_room2 = '1' on a clock means in_ready = '1' on the next clock too:
+--     room for this clock's word and the next one, for a producer with one
+--     register stage after its decision.
+-- A write while in_ready = '0' is ignored.
 --
 -- Logic depth: the pointers only address the RAM, and no two registers are
 -- ever compared. The flags come from a level register compared with
@@ -14,7 +26,8 @@
 -- operand: one LUT and the carry chain). Both flags are conservative for that
 -- clock: a word is read only if it is in the RAM even without the last
 -- clock's write (so a word written into an empty FIFO waits one more clock),
--- and in_ready drops while the RAM may have fewer than three free words.
+-- and in_ready drops while the RAM may have fewer than three free words
+-- (in_room2 while it may have fewer than four).
 --
 -- Up to 2048 words the level has at most 12 bits and the logic at most 4
 -- levels. `busy` is '1' while any word is inside (one clock late).
@@ -35,6 +48,7 @@ entity fastnms_fifo is
     rst       : in    std_logic;
     in_valid  : in    std_logic;
     in_ready  : out   std_logic;
+    in_room2  : out   std_logic;
     in_data   : in    std_logic_vector(WIDTH - 1 downto 0);
     out_valid : out   std_logic;
     out_ready : in    std_logic;
@@ -57,6 +71,7 @@ architecture rtl of fastnms_fifo is
   signal delta   : unsigned(ADDR_BITS downto 0); -- wrote - took
   signal filled  : std_logic;                    -- a word is in the RAM for sure
   signal ready   : std_logic;
+  signal room2   : std_logic;
   signal write   : std_logic;
   signal read_en : std_logic;                    -- the RAM's read register advances
   signal read    : std_logic;                    -- ... and takes a word
@@ -67,6 +82,10 @@ architecture rtl of fastnms_fifo is
   signal out_valid_i : std_logic;
 
 begin
+
+  assert DEPTH <= 2 ** 16
+    report "fastnms_fifo: DEPTH must be at most 65536"
+    severity failure;
 
   -- level - took >= 1: level >= 2, or level = 1 without a read.
   filled <= (or level(ADDR_BITS downto 1)) or (level(0) and not took);
@@ -105,6 +124,8 @@ begin
       -- Room for the words of this clock and the next: level <= WORDS - 3
       -- (WORDS is a power of two, so level >= WORDS - 2 is a gate, not a compare).
       ready <= not (level(ADDR_BITS) or (and level(ADDR_BITS - 1 downto 1)));
+      -- Room for the words of this clock and the next two: level <= WORDS - 4.
+      room2 <= to_sl(level <= WORDS - 4);
       if read_en = '1' then
         q_valid <= filled;
       end if;
@@ -116,6 +137,7 @@ begin
         delta   <= (others => '0');
         level   <= (others => '0');
         ready   <= '0';
+        room2   <= '0';
         q_valid <= '0';
         busy    <= '0';
       end if;
@@ -124,6 +146,7 @@ begin
   end process pointers;
 
   in_ready <= ready;
+  in_room2 <= room2;
 
   ram : entity work.fastnms_ram_sdp
     generic map (

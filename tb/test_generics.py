@@ -1,0 +1,109 @@
+"""Generic checks: every entity with generics refuses an illegal value with its
+own `assert ... report "<entity>: ..." severity failure`, and elaborates
+cleanly at its defaults. The RTL is analysed once into a temporary library;
+each case is a GHDL elaboration run to time 0."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+
+import pytest
+from fastnms.sim.sources import rtl_sources
+
+# Entity -> (an illegal generic set, the start of its assertion message).
+ILLEGAL = {
+    "fastnms_counter": ({"SEGMENT": 1}, "SEGMENT must be at least 2"),
+    "fastnms_fifo": ({"DEPTH": 70000}, "DEPTH must be at most 65536"),
+    "fastnms_line_buffer": ({"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
+    "fastnms_position": ({"X_BITS": 17}, "X_BITS and Y_BITS must be at most 16"),
+    "fastnms_ram_sdp": ({"STYLE": "ultra"}, "STYLE must be"),
+    "fastnms_window": ({"WINDOW": 4}, "WINDOW must be odd and at least 3"),
+    "fastnms_fast_detector": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
+    "fastnms_nms_3x3": ({"MAX_HEIGHT": 2}, "MAX_WIDTH and MAX_HEIGHT must be in 3 .. 65535"),
+    "fastnms_nms_none": ({"MAX_HEIGHT": 70000}, "MAX_WIDTH must be in 2 .. 65535"),
+    "fastnms_nms_region_scan": ({"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
+    # (a LABEL_BITS other than clog2(LABELS) fails at elaboration already:
+    # the RAM ports do not match)
+    "fastnms_nms_region_table": ({"LABELS": 2, "LABEL_BITS": 1}, "LABELS must be at least 3"),
+    "fastnms_nms_region": (
+        {"MAX_WIDTH": 32, "LABELS": 18},
+        "LABELS must be at least MAX_WIDTH / 2 + 3",
+    ),
+    "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
+    "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
+    "fastnms_corner_pack": ({"X_BITS": 30, "Y_BITS": 30}, "X_BITS + Y_BITS + SCORE_BITS + 2"),
+    "fastnms_video_check": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
+    "fastnms_video_gate": ({"SETTLE": 2}, "SETTLE must be at least 3"),
+    "fastnms_axi": ({"NMS": "5x5"}, "NMS must be"),
+}
+# Entities whose generics have no illegal value beyond their VHDL subtype
+# (GHDL refuses those at elaboration already).
+NOTHING_TO_CHECK = {"fastnms_skid_buffer": "WIDTH: any positive width works"}
+# More illegal values of entities with several checks: (entity, generics, message).
+MORE = [
+    ("fastnms_ram_sdp", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
+    ("fastnms_core", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
+    ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
+    ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
+    ("fastnms_nms_region", {"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
+    ("fastnms_nms_region", {"EVENT_DEPTH": 70000}, "EVENT_DEPTH must be at most 65536"),
+    ("fastnms_axi", {"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
+    ("fastnms_window", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
+]
+
+_GENERIC = re.compile(r"\bentity\s+(\w+)\s+is\s+generic\s*\(", re.IGNORECASE)
+
+
+def entities_with_generics() -> set[str]:
+    found = set()
+    for f in rtl_sources():
+        code = re.sub(r"--[^\n]*", "", f.read_text())
+        found.update(m.lower() for m in _GENERIC.findall(code))
+    return found
+
+
+@pytest.fixture(scope="module")
+def workdir(tmp_path_factory):
+    """The RTL analysed once into a temporary GHDL library."""
+    work = tmp_path_factory.mktemp("ghdl_generics")
+    files = [str(f) for f in rtl_sources()]
+    subprocess.run(
+        ["ghdl", "-a", "--std=08", f"--workdir={work}", *files],
+        cwd=work,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    return work
+
+
+def elaborate(work, entity: str, generics: dict[str, object]) -> str:
+    """Elaborate `entity` and run it to time 0 (where the concurrent assertions
+    run); every assertion is reported, none stops the run. Returns GHDL's output."""
+    cmd = ["ghdl", "--elab-run", "--std=08", f"--workdir={work}", entity]
+    cmd += [f"-g{k}={v}" for k, v in generics.items()]
+    cmd += ["--assert-level=none", "--stop-time=0ns", "--ieee-asserts=disable"]
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=120)
+    return proc.stdout + proc.stderr
+
+
+def test_every_entity_with_generics_is_listed():
+    assert entities_with_generics() == set(ILLEGAL) | set(NOTHING_TO_CHECK)
+
+
+@pytest.mark.parametrize(
+    ("entity", "generics", "message"),
+    [(e, g, m) for e, (g, m) in ILLEGAL.items()] + MORE,
+    ids=lambda v: v if isinstance(v, str) and v.startswith("fastnms") else None,
+)
+def test_illegal_generic_fails(workdir, entity, generics, message):
+    out = elaborate(workdir, entity, generics)
+    want = f"(assertion failure): {entity}: {message}"
+    assert want in out, f"{entity} {generics}: no {want!r} in\n{out}"
+
+
+@pytest.mark.parametrize("entity", sorted(set(ILLEGAL) | set(NOTHING_TO_CHECK)))
+def test_defaults_elaborate(workdir, entity):
+    out = elaborate(workdir, entity, {})
+    assert "assertion failure" not in out and "error" not in out.lower(), out
