@@ -105,13 +105,19 @@ def region_memory(
     x_bits, y_bits = clog2(max_width), bits_for(max_height)
     key_bits = score_bits + x_bits + y_bits
     event_bits = 6 + 3 * label_bits + score_bits + x_bits + y_bits
+
+    def fifo_words(depth: int) -> int:
+        """fastnms_fifo's RAM: DEPTH rounded up to a power of two, at least 4."""
+        return 2 ** max(2, clog2(depth))
+
     rows = [
         ("label line (RAM index)", max_width, label_bits + 1),
         # runs, next and prev each carry a flag bit (runs = 1, has next, has prev).
         ("label tables: region, runs, next, prev", labels, 3 * label_bits + run_bits + 3),
         ("region tables: best key, head, tail (RAM score)", labels, key_bits + 2 * label_bits),
-        ("free lists: labels, regions", 2 * labels, label_bits),
-        ("event queue", event_depth, event_bits),
+        # Each free list is a fastnms_fifo of LABELS + 2 words.
+        ("free lists: labels, regions", 2 * fifo_words(labels + 2), label_bits),
+        ("event queue", fifo_words(event_depth), event_bits),
     ]
     breakdown = [{"memory": m, "words": n, "bits_per_word": b, "bits": n * b} for m, n, b in rows]
     paper = (max_width // 2) * (score_bits + x_bits + y_bits + label_bits)

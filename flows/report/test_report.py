@@ -107,7 +107,7 @@ def check_report(summary, info, tmp_path):
     assert both.count("<!-- synth:begin") == 1 and both.count("<!-- bench:end -->") == 1
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
-    assert "| **total** |  | **169 631** |" in both
+    assert "| **total** |  | **170 851** |" in both
     # Rewriting the synthesis section keeps the bench one.
     report.update_synth(summary, info, path)
     assert path.read_text() == both
@@ -118,8 +118,9 @@ def test_region_memory_breakdown():
     RTL sizes them (worked out by hand from its generics; `make bench` renders the
     table into docs/results.md)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
-    assert [r["bits"] for r in mem["breakdown"]] == [21120, 41409, 52002, 19260, 35840]
-    assert mem["total_bits"] == 169631
+    # 963 labels of 10 bits; each free list a FIFO of 1024 words; 70-bit events.
+    assert [r["bits"] for r in mem["breakdown"]] == [21120, 41409, 52002, 20480, 35840]
+    assert mem["total_bits"] == 170851
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200
 

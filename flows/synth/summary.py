@@ -104,7 +104,8 @@ def block_entries(width: int, height: int) -> list[Entry]:
     """The building blocks on their own (`blocks` in `entities`), once, at the
     generics they have inside the top at this size: the window and its line
     buffer and RAM, the corner FIFO and skid buffer (32-bit records of opencv at
-    1920x1080), the 32-bit statistics counter, and the `none` NMS."""
+    1920x1080), the 32-bit statistics counter, the position counter, and the
+    `none` NMS."""
     size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
     blocks = {
         "fastnms_window": size,
@@ -113,6 +114,7 @@ def block_entries(width: int, height: int) -> list[Entry]:
         "fastnms_fifo": {"DEPTH": 512, "WIDTH": 32},
         "fastnms_skid_buffer": {"WIDTH": 32},
         "fastnms_counter": {"WIDTH": 32},
+        "fastnms_position": {"X_BITS": 11, "Y_BITS": 11},
         "fastnms_nms_none": {**size, "SCORE_BITS": 8},
     }
     return [Entry(f"{e}-{width}", e, "-", "-", g) for e, g in blocks.items()]
