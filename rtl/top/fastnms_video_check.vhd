@@ -149,8 +149,9 @@ begin
 
   position : entity work.fastnms_position
     generic map (
-      X_BITS => x_t'length,
-      Y_BITS => y_t'length
+      X_BITS    => x_t'length,
+      Y_BITS    => y_t'length,
+      HAS_START => true
     )
     port map (
       clk     => clk,
