@@ -66,6 +66,7 @@ begin
     end if;
 
   end process no_start;
+
   -- pragma translate_on
 
   counting : process (clk) is
