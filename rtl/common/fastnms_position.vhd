@@ -2,12 +2,10 @@
 -- the one way the blocks count where a pixel is (the window generator's
 -- input and output sides, the NMS blocks, the video checker).
 --
--- Each axis has up to three controls, in this priority:
+-- Each axis has three controls, in this priority:
 --   clear  the axis becomes 0 (a new line for x, a new frame for y)
 --   start  the axis becomes 1 (the clock's pixel was the first one: x after
---          a start of frame that is not also the end of its line); only
---          with HAS_START = true, else x_start and y_start are ignored
---          (a simulation assertion checks they stay '0')
+--          a start of frame that is not also the end of its line)
 --   step   the axis counts one up (a pixel for x, a line for y)
 -- and keeps its value otherwise. The new value is on x / y on the clock
 -- after the control (registered outputs, no reset of their own: a user
@@ -17,19 +15,16 @@
 -- registered "last column" flag compared one pixel ahead, or from a flush
 -- pass), so the flags stay with it; this block keeps the counting itself
 -- short: clear is the flip-flops' reset, step their enable, and the next
--- value is the carry chain. start costs a multiplexer in front of the carry
--- chain, so it is a generic: a start input tied to '0' is not enough, since
--- synthesis then keeps a netlist that abc maps one logic level deeper in the
--- window generator.
+-- value is the carry chain (start costs a LUT on bit 0 only, and nothing when
+-- tied to '0').
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 entity fastnms_position is
   generic (
-    X_BITS    : positive := 11;
-    Y_BITS    : positive := 12;
-    HAS_START : boolean  := false
+    X_BITS : positive := 11;
+    Y_BITS : positive := 12
   );
   port (
     clk     : in    std_logic;
@@ -55,34 +50,20 @@ begin
     report "fastnms_position: X_BITS and Y_BITS must be at most 16"
     severity failure;
 
-  -- pragma translate_off
-  no_start : process (clk) is
-  begin
-
-    if rising_edge(clk) then
-      assert HAS_START or (x_start /= '1' and y_start /= '1')
-        report "fastnms_position: x_start or y_start set with HAS_START = false"
-        severity error;
-    end if;
-
-  end process no_start;
-
-  -- pragma translate_on
-
   counting : process (clk) is
   begin
 
     if rising_edge(clk) then
       if x_clear = '1' then
         x_count <= (others => '0');
-      elsif HAS_START and x_start = '1' then
+      elsif x_start = '1' then
         x_count <= to_unsigned(1, X_BITS);
       elsif x_step = '1' then
         x_count <= x_count + 1;
       end if;
       if y_clear = '1' then
         y_count <= (others => '0');
-      elsif HAS_START and y_start = '1' then
+      elsif y_start = '1' then
         y_count <= to_unsigned(1, Y_BITS);
       elsif y_step = '1' then
         y_count <= y_count + 1;

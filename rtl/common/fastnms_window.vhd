@@ -156,9 +156,12 @@ architecture rtl of fastnms_window is
   signal take    : std_logic;
   signal counted : std_logic;
   signal emit    : std_logic;
-  -- Position controls (fastnms_position): a clear beats a step, so that both
-  -- map onto the flip-flops' reset and enable pins and the next value is the
-  -- carry chain.
+  -- Counter controls: a clear beats a step, so that both map onto the
+  -- flip-flops' reset and enable pins and the next value is the carry chain.
+  -- The four counters are written here rather than as fastnms_position
+  -- instances: the same logic behind an entity boundary let yosys's abc map
+  -- the shared controls one level deeper (5 levels in the detector at
+  -- MAX_WIDTH 1920; measured with flows/synth/synth.py), where this maps in 4.
   signal in_x_clear  : std_logic;
   signal in_x_step   : std_logic;
   signal in_y_clear  : std_logic;
@@ -229,39 +232,33 @@ begin
   out_y_clear <= rst or (advance and emit and out_x_last and out_y_last);
   out_y_step  <= advance and emit and out_x_last;
 
-  input_position : entity work.fastnms_position
-    generic map (
-      X_BITS => x_t'length,
-      Y_BITS => y_t'length
-    )
-    port map (
-      clk     => clk,
-      x_clear => in_x_clear,
-      x_start => '0',
-      x_step  => in_x_step,
-      y_clear => in_y_clear,
-      y_start => '0',
-      y_step  => in_y_step,
-      x       => in_x,
-      y       => in_y
-    );
+  counters : process (clk) is
+  begin
 
-  output_position : entity work.fastnms_position
-    generic map (
-      X_BITS => x_t'length,
-      Y_BITS => y_t'length
-    )
-    port map (
-      clk     => clk,
-      x_clear => out_x_clear,
-      x_start => '0',
-      x_step  => out_x_step,
-      y_clear => out_y_clear,
-      y_start => '0',
-      y_step  => out_y_step,
-      x       => beat_x,
-      y       => beat_y
-    );
+    if rising_edge(clk) then
+      if in_x_clear = '1' then
+        in_x <= (others => '0');
+      elsif in_x_step = '1' then
+        in_x <= in_x + 1;
+      end if;
+      if in_y_clear = '1' then
+        in_y <= (others => '0');
+      elsif in_y_step = '1' then
+        in_y <= in_y + 1;
+      end if;
+      if out_x_clear = '1' then
+        beat_x <= (others => '0');
+      elsif out_x_step = '1' then
+        beat_x <= beat_x + 1;
+      end if;
+      if out_y_clear = '1' then
+        beat_y <= (others => '0');
+      elsif out_y_step = '1' then
+        beat_y <= beat_y + 1;
+      end if;
+    end if;
+
+  end process counters;
 
   config : process (clk) is
   begin

@@ -149,9 +149,8 @@ begin
 
   position : entity work.fastnms_position
     generic map (
-      X_BITS    => x_t'length,
-      Y_BITS    => y_t'length,
-      HAS_START => true
+      X_BITS => x_t'length,
+      Y_BITS => y_t'length
     )
     port map (
       clk     => clk,
