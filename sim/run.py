@@ -8,7 +8,6 @@ runs with the same score and NMS.
 
 from __future__ import annotations
 
-import fcntl
 import json
 import tempfile
 import threading
@@ -19,9 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .sources import REPO, RTL, rtl_sources
+from .ghdl import BUILD, build_and_run
+from .sources import RTL
 
-BUILD = REPO / "build" / "sim"
 # The largest frame the simulated IP is built for (its MAX_WIDTH, MAX_HEIGHT).
 MAX_WIDTH = 1920
 MAX_HEIGHT = 1080
@@ -60,8 +59,6 @@ def run_rtl(
     once a second while the frame goes in."""
     if not RTL.is_dir():
         raise SimError(f"the RTL is not beside {Path(__file__).parent} (needs the source tree)")
-    from cocotb_tools.runner import get_runner
-
     generics = {"MAX_WIDTH": MAX_WIDTH, "MAX_HEIGHT": MAX_HEIGHT, "SCORE": score, "NMS": nms}
     build_dir = BUILD / f"fastnms_axi-cli-{score}-{nms}"
     build_dir.mkdir(parents=True, exist_ok=True)
@@ -69,29 +66,17 @@ def run_rtl(
         work = Path(tmp)
         np.save(work / "image.npy", np.ascontiguousarray(img, dtype=np.uint8))
         out, progress_file, log = work / "result.json", work / "progress", build_dir / "sim.log"
-        runner = get_runner("ghdl")
         start = time.perf_counter()
         failure: list[BaseException] = []
 
         def simulate() -> None:
-            # Build under an exclusive lock, simulate under a shared one: a parallel
-            # run must not re-analyse the library while another one elaborates it.
-            lock = open(build_dir / ".lock", "w")  # noqa: SIM115 (held across the thread)
             try:
-                fcntl.flock(lock, fcntl.LOCK_EX)
-                runner.build(
-                    sources=rtl_sources(),
-                    hdl_toplevel="fastnms_axi",
-                    build_args=["--std=08"],
+                tests, failed = build_and_run(
+                    "fastnms_axi",
+                    "fastnms.sim.frame_tb",
+                    generics,
                     build_dir=build_dir,
-                    log_file=build_dir / "build.log",
-                )
-                fcntl.flock(lock, fcntl.LOCK_SH)
-                runner.test(
-                    test_module="fastnms.sim.frame_tb",
-                    hdl_toplevel="fastnms_axi",
-                    parameters=generics,
-                    test_args=["--std=08", f"--workdir={build_dir}"],
+                    test_dir=work,
                     plusargs=["--ieee-asserts=disable-at-0"],
                     extra_env={
                         "SIM_GENERICS": repr(generics),
@@ -100,15 +85,12 @@ def run_rtl(
                         "SIM_OUT": str(out),
                         "SIM_PROGRESS": str(progress_file),
                     },
-                    build_dir=build_dir,
-                    test_dir=work,
-                    results_xml=str(work / "results.xml"),
                     log_file=log,
                 )
+                if tests == 0 or failed:
+                    failure.append(SimError("the cocotb module failed"))
             except BaseException as e:  # reported by the caller's thread
                 failure.append(e)
-            finally:
-                lock.close()
 
         thread = threading.Thread(target=simulate, daemon=True)
         thread.start()

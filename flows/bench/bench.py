@@ -19,7 +19,6 @@ import argparse
 import json
 import os
 import platform
-import sys
 import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -27,8 +26,8 @@ from pathlib import Path
 
 import cv2
 import numpy as np
-from fastnms.sim.run import BUILD
-from fastnms.sim.sources import REPO, rtl_sources
+from fastnms.sim.ghdl import BUILD, build_and_run
+from fastnms.sim.sources import REPO
 from fastnms.testing import images as testimages
 
 from flows.bench import software
@@ -214,50 +213,25 @@ def simulate(
 
 
 def run_bench(generics: dict, name: str, log: Path, env: dict[str, str]) -> None:
-    """tb.harness.run_cocotb's build for flows/bench/bench_tb.py, with two differences: GHDL's
-    numeric_std warnings are off for the whole run (the first rows of every
-    line buffer are uninitialised RAM: hundreds of thousands of metavalue
+    """flows/bench/bench_tb.py on fastnms_axi, in the tests' build directory
+    (tb/harness.py names it the same way), with two differences from the tests:
+    GHDL's numeric_std warnings are off for the whole run (the first rows of
+    every line buffer are uninitialised RAM: hundreds of thousands of metavalue
     warnings at 1920 pixels, which cost wall time), and the simulator's output
-    goes to `log`. Same build directory and locking as run_cocotb, so the
-    tests' builds are shared."""
-    import fcntl
-
-    from cocotb_tools.check_results import get_results
-    from cocotb_tools.runner import get_runner
-
+    goes to `log`."""
     key = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
     build_dir = BUILD / f"fastnms_axi-{key}"
-    test_dir = build_dir / name
-    test_dir.mkdir(parents=True, exist_ok=True)
-    # The simulator's Python finds flows.bench.bench_tb from the repository root.
-    if str(REPO) not in sys.path:
-        sys.path.insert(0, str(REPO))
-    runner = get_runner("ghdl")
-    with open(build_dir / ".lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        runner.build(
-            sources=rtl_sources(),
-            hdl_toplevel="fastnms_axi",
-            build_args=["--std=08"],
-            build_dir=build_dir,
-            always=False,
-            log_file=log,
-        )
-        fcntl.flock(lock, fcntl.LOCK_SH)
-        results = runner.test(
-            test_module="flows.bench.bench_tb",
-            hdl_toplevel="fastnms_axi",
-            parameters=generics,
-            test_args=["--std=08", f"--workdir={build_dir}"],
-            plusargs=["--ieee-asserts=disable"],
-            seed=1,  # the bench has no random idles or stalls
-            extra_env={"BENCH_GENERICS": repr(generics), **env},
-            build_dir=build_dir,
-            test_dir=test_dir,
-            results_xml=str(test_dir / "results.xml"),
-            log_file=log,
-        )
-    tests, failed = get_results(Path(results))
+    tests, failed = build_and_run(
+        "fastnms_axi",
+        "flows.bench.bench_tb",
+        generics,
+        build_dir=build_dir,
+        test_dir=build_dir / name,
+        plusargs=["--ieee-asserts=disable"],
+        extra_env={"BENCH_GENERICS": repr(generics), **env},
+        seed=1,  # the bench has no random idles or stalls
+        log_file=log,
+    )
     if tests == 0 or failed:
         raise RuntimeError(f"{name}: the bench failed, see {log}")
 
