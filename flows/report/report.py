@@ -13,6 +13,7 @@ text outside the markers is kept as it is.
 from __future__ import annotations
 
 import json
+import os
 import re
 import sys
 from pathlib import Path
@@ -734,15 +735,18 @@ DOCS = REPO / "docs"
 FIGURES = re.compile(r"(<!-- figures:begin (\w+)[^>]*-->\n).*?(<!-- figures:end -->)", re.S)
 
 
-def entity_figures(entity: str, summary: list[dict], info: dict) -> str:
+def entity_figures(
+    entity: str, summary: list[dict], info: dict, results: str = "results.md"
+) -> str:
     """The generated figures of one entity's page: its rows of the `make synth`
     summary (each configuration that synthesizes it), or a sentence saying that
-    it is not synthesized on its own."""
+    it is not synthesized on its own. `results`: the link to results.md from
+    the page."""
     rows = _unique([r for r in summary if r["entity"] == entity])
     if not rows:
         return (
             f"`make synth` does not synthesize `{entity}` on its own; its cost is inside "
-            "the figures of the blocks that contain it ([results.md](results.md))."
+            f"the figures of the blocks that contain it ([results.md]({results}))."
         )
     body = []
     for r in rows:
@@ -765,7 +769,7 @@ def entity_figures(entity: str, summary: list[dict], info: dict) -> str:
         "",
         "yosys `synth_xilinx` (xc7, not Vivado) and nextpnr-ecp5 (Lattice ECP5-8, out "
         f"of context), from `make synth` at {source_text(info.get('source'))}; how to read "
-        "them: [results.md](results.md).",
+        f"them: [results.md]({results}).",
     ]
     return "\n".join(out)
 
@@ -781,8 +785,11 @@ def update_figures(summary: list[dict], info: dict, pages: list[Path] | None = N
     done = []
     for page in doc_pages() if pages is None else pages:
         text = page.read_text()
+        link = os.path.relpath(RESULTS, page.parent)
         new = FIGURES.sub(
-            lambda m: m.group(1) + entity_figures(m.group(2), summary, info) + "\n" + m.group(3),
+            lambda m: (
+                m.group(1) + entity_figures(m.group(2), summary, info, link) + "\n" + m.group(3)
+            ),
             text,
         )
         if new != text:
