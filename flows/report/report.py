@@ -786,12 +786,12 @@ def update_figures(summary: list[dict], info: dict, pages: list[Path] | None = N
     for page in doc_pages() if pages is None else pages:
         text = page.read_text()
         link = os.path.relpath(RESULTS, page.parent)
-        new = FIGURES.sub(
-            lambda m: (
-                m.group(1) + entity_figures(m.group(2), summary, info, link) + "\n" + m.group(3)
-            ),
-            text,
-        )
+
+        def block(m: re.Match, link: str = link) -> str:
+            body = entity_figures(m.group(2), summary, info, link)
+            return f"{m.group(1)}{body}\n{m.group(3)}"
+
+        new = FIGURES.sub(block, text)
         if new != text:
             page.write_text(new)
             done.append(page)
