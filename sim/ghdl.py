@@ -11,6 +11,7 @@ can share a build but never re-analyse a library while another run elaborates it
 from __future__ import annotations
 
 import fcntl
+import subprocess
 import sys
 from pathlib import Path
 
@@ -74,3 +75,9 @@ def build_and_run(
             log_file=log_file,
         )
     return get_results(Path(results))
+
+
+def ghdl_version() -> str:
+    """The first line of `ghdl --version`, or "unknown"."""
+    out = subprocess.run(["ghdl", "--version"], capture_output=True, text=True).stdout
+    return out.splitlines()[0] if out else "unknown"

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import cv2
 import numpy as np
-from fastnms.sim.ghdl import BUILD, build_and_run
+from fastnms.sim.ghdl import BUILD, build_and_run, ghdl_version
 from fastnms.sim.sources import REPO
 from fastnms.testing import images as testimages
 
@@ -276,13 +276,6 @@ def machine() -> dict:
         "python": platform.python_version(),
         "opencv": cv2.__version__,
     }
-
-
-def ghdl_version() -> str:
-    import subprocess
-
-    out = subprocess.run(["ghdl", "--version"], capture_output=True, text=True).stdout
-    return out.splitlines()[0] if out else "unknown"
 
 
 def main(argv: list[str] | None = None) -> None:

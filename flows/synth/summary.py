@@ -23,6 +23,7 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from fastnms.sim.ghdl import ghdl_version
 from fastnms.sim.sources import REPO
 
 from flows.report import report
@@ -246,7 +247,7 @@ def run(
             }
         )
     info = {
-        "tools": {**ecp5.versions(), "ghdl": _ghdl_version()},
+        "tools": {**ecp5.versions(), "ghdl": ghdl_version()},
         "xc7_flow": "ghdl --synth --out=verilog, then yosys synth_xilinx -family xc7 -flatten",
         "ecp5_flow": (
             f"yosys synth_ecp5, then nextpnr-ecp5 {' '.join(ecp5.DEVICE)} "
@@ -261,13 +262,6 @@ def run(
         "wall_seconds": time.perf_counter() - start,
     }
     return summary, info
-
-
-def _ghdl_version() -> str:
-    import subprocess
-
-    out = subprocess.run(["ghdl", "--version"], capture_output=True, text=True).stdout
-    return out.splitlines()[0] if out else "unknown"
 
 
 def main(argv: list[str] | None = None) -> None:
