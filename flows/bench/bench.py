@@ -290,6 +290,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--out", type=Path, default=BENCH_BUILD / "summary.json")
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
     args = ap.parse_args(argv)
+    args.out = args.out.resolve()  # the simulator runs in another folder
     configs = [tuple(c.split("-", 1)) for c in args.configs.split(",")]
 
     start = time.perf_counter()
