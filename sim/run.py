@@ -1,9 +1,15 @@
-"""Running the RTL top (fastnms_axi) under GHDL on one image, for `fastnms sim` and
-`fastnms compare`.
+"""Running the RTL top (fastnms_axi) on frames, for `fastnms sim`, `fastnms compare`
+and the bench, with either engine:
 
-The simulator runs sim/frame_tb.py (cocotb + cocotbext-axi), so this needs the source
-tree (rtl/ beside sim/) and GHDL; the build goes to build/sim/ and is reused between
-runs with the same score and NMS.
+- "verilator" (default): the netlist GHDL synthesizes, compiled by Verilator and
+  driven from C++ (sim/verilator.py); about a million clocks per second.
+- "cocotb": the RTL under GHDL, driven by cocotb and cocotbext-axi
+  (sim/frame_tb.py); a few thousand clocks per second.
+
+Both send the frames back to back (the next frame's size and threshold written
+over AXI4-Lite while the previous one goes in), count clocks the same way and
+draw the same seeded idle and stall patterns (sim/timing.py), so they give the
+same records and the same clock counts. Both need the source tree (rtl/).
 """
 
 from __future__ import annotations
@@ -12,30 +18,53 @@ import json
 import tempfile
 import threading
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from . import regs, verilator
 from .ghdl import BUILD, build_and_run
 from .sources import RTL
+from .timing import Timing
 
 # The largest frame the simulated IP is built for (its MAX_WIDTH, MAX_HEIGHT).
 MAX_WIDTH = 1920
 MAX_HEIGHT = 1080
 MIN_SIZE = 7
+ENGINES = ("verilator", "cocotb")
 
 
 class SimError(Exception):
-    """The simulation could not run or did not finish; the message says where the log is."""
+    """The simulation could not run or did not finish; the message says why or where the log is."""
+
+
+@dataclass
+class FrameResult:
+    width: int
+    height: int
+    threshold: int
+    records: np.ndarray  # (N, 3) int64: x, y, score, sorted by y then x
+    cycles: int  # the frame's first input beat accepted to its last record, inclusive
+    input_stalls: int  # clocks with video tvalid high and tready low, during this frame
 
 
 @dataclass
 class SimResult:
-    records: np.ndarray  # (N, 3) int64: x, y, score, sorted by y then x
-    cycles: int  # first input beat accepted to the frame's last record, inclusive
-    wall_seconds: float
+    frames: list[FrameResult]
+    cycles: int  # first input beat of the first frame to the last record of the last
+    input_stalls: int
+    wall_seconds: float  # the simulation, without the build
+    engine: str
+    build_seconds: float | None = None  # set when this call built the engine
+    status: int | None = None  # STATUS read after the last frame (fast engine)
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def records(self) -> np.ndarray:
+        """The first frame's records (the only frame's, for one image)."""
+        return self.frames[0].records
 
 
 def check_size(img: np.ndarray) -> str | None:
@@ -48,23 +77,101 @@ def check_size(img: np.ndarray) -> str | None:
     return None
 
 
+def decode_words(words: np.ndarray) -> np.ndarray:
+    """The corners (x, y, score) of one frame's record words: none for the single
+    EMPTY record of a frame without corners. Sorted by y then x."""
+    words = np.asarray(words, dtype=np.uint64)
+
+    def get(f: regs.Field) -> np.ndarray:
+        return ((words >> np.uint64(f.lsb)) & np.uint64((1 << f.width) - 1)).astype(np.int64)
+
+    empty = get(regs.REC_EMPTY).astype(bool)
+    recs = np.stack([get(regs.REC_X), get(regs.REC_Y), get(regs.REC_SCORE)], axis=1)[~empty]
+    return recs[np.lexsort((recs[:, 0], recs[:, 1]))].reshape(-1, 3)
+
+
+def generics_for(score: str, nms: str) -> dict[str, object]:
+    return {"MAX_WIDTH": MAX_WIDTH, "MAX_HEIGHT": MAX_HEIGHT, "SCORE": score, "NMS": nms}
+
+
 def run_rtl(
-    img: np.ndarray,
-    threshold: int,
+    frames: Sequence[tuple[np.ndarray, int]],
     score: str,
     nms: str,
+    *,
+    engine: str = "verilator",
+    timing: Timing = Timing(),
     progress: Callable[[int, int, float], None] | None = None,
+    announce: Callable[[str], None] | None = None,
+    generics: dict[str, object] | None = None,
+    power_up_seed: int | None = None,
 ) -> SimResult:
-    """Simulate fastnms_axi on `img`; `progress(rows_in, rows, seconds)` is called about
-    once a second while the frame goes in."""
+    """Simulate fastnms_axi on `frames` (image, threshold), sent back to back.
+    `progress(pixels_in, pixels, seconds)` is called about once a second;
+    `announce(text)` before a build of the fast engine. `generics` overrides
+    the build (default: MAX_WIDTH x MAX_HEIGHT with score and nms)."""
     if not RTL.is_dir():
         raise SimError(f"the RTL is not beside {Path(__file__).parent} (needs the source tree)")
-    generics = {"MAX_WIDTH": MAX_WIDTH, "MAX_HEIGHT": MAX_HEIGHT, "SCORE": score, "NMS": nms}
-    build_dir = BUILD / f"fastnms_axi-cli-{score}-{nms}"
+    if not frames:
+        raise SimError("no frame to simulate")
+    generics = generics or generics_for(score, nms)
+    if engine == "verilator":
+        return _run_verilator(frames, generics, timing, progress, announce, power_up_seed)
+    if engine == "cocotb":
+        if timing.hblank or timing.vblank:
+            raise SimError("blanking (hblank, vblank) needs the verilator engine")
+        return _run_cocotb(frames, generics, timing, progress)
+    raise SimError(f"unknown engine {engine!r}; choose from {', '.join(ENGINES)}")
+
+
+def _frame_results(frames, raw_frames) -> list[FrameResult]:
+    return [
+        FrameResult(
+            width=img.shape[1],
+            height=img.shape[0],
+            threshold=threshold,
+            records=decode_words(raw.words),
+            cycles=raw.last_record - raw.first_pixel + 1,
+            input_stalls=raw.input_stalls,
+        )
+        for (img, threshold), raw in zip(frames, raw_frames, strict=True)
+    ]
+
+
+def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) -> SimResult:
+    try:
+        exe, build_seconds = verilator.build(generics, announce)
+    except verilator.EngineError as e:
+        raise SimError(str(e)) from None
+    start = time.perf_counter()
+
+    def report(pixels_in: int, pixels: int) -> None:
+        if progress is not None:
+            progress(pixels_in, pixels, time.perf_counter() - start)
+
+    try:
+        raw = verilator.run(exe, frames, timing, report, power_up_seed)
+    except verilator.EngineError as e:
+        raise SimError(f"the fast engine stopped: {e}") from None
+    return SimResult(
+        frames=_frame_results(frames, raw.frames),
+        cycles=raw.cycles,
+        input_stalls=raw.input_stalls,
+        wall_seconds=time.perf_counter() - start,
+        engine="verilator",
+        build_seconds=build_seconds,
+        status=raw.status,
+        extra={"frame_count": raw.frame_count},
+    )
+
+
+def _run_cocotb(frames, generics, timing, progress) -> SimResult:
+    name = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
+    build_dir = BUILD / f"fastnms_axi-cli-{name}"
     build_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=build_dir) as tmp:
         work = Path(tmp)
-        np.save(work / "image.npy", np.ascontiguousarray(img, dtype=np.uint8))
+        np.savez(work / "frames.npz", *[np.ascontiguousarray(img, np.uint8) for img, _ in frames])
         out, progress_file, log = work / "result.json", work / "progress", build_dir / "sim.log"
         start = time.perf_counter()
         failure: list[BaseException] = []
@@ -77,11 +184,14 @@ def run_rtl(
                     generics,
                     build_dir=build_dir,
                     test_dir=work,
-                    plusargs=["--ieee-asserts=disable-at-0"],
+                    # The line buffers start undefined (as BRAMs do not in
+                    # hardware): numeric_std's warnings about them are noise.
+                    plusargs=["--ieee-asserts=disable"],
                     extra_env={
                         "SIM_GENERICS": repr(generics),
-                        "SIM_IMAGE": str(work / "image.npy"),
-                        "SIM_THRESHOLD": str(threshold),
+                        "SIM_FRAMES": str(work / "frames.npz"),
+                        "SIM_THRESHOLDS": " ".join(str(t) for _, t in frames),
+                        "SIM_TIMING": json.dumps(timing.as_dict()),
                         "SIM_OUT": str(out),
                         "SIM_PROGRESS": str(progress_file),
                     },
@@ -98,14 +208,23 @@ def run_rtl(
             thread.join(1.0)
             if progress is not None and progress_file.exists():
                 try:
-                    rows_in, rows = (int(v) for v in progress_file.read_text().split())
+                    pixels_in, pixels = (int(v) for v in progress_file.read_text().split())
                 except ValueError:  # caught while being rewritten
                     continue
-                progress(rows_in, rows, time.perf_counter() - start)
+                progress(pixels_in, pixels, time.perf_counter() - start)
         wall = time.perf_counter() - start
         if failure or not out.exists():
             raise SimError(f"the simulation failed; see {log}")
         result = json.loads(out.read_text())
-    records = np.array(result["records"], dtype=np.int64).reshape(-1, 3)
-    records = records[np.lexsort((records[:, 0], records[:, 1]))]
-    return SimResult(records, int(result["cycles"]), wall)
+    raw = [
+        verilator.RawFrame(f["first_pixel"], f["last_pixel"], f["last_record"],
+                           np.array(f["words"], dtype=np.uint64), f["input_stalls"])
+        for f in result["frames"]
+    ]
+    return SimResult(
+        frames=_frame_results(frames, raw),
+        cycles=raw[-1].last_record - raw[0].first_pixel + 1,
+        input_stalls=result["input_stalls"],
+        wall_seconds=wall,
+        engine="cocotb",
+    )
