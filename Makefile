@@ -8,16 +8,17 @@ PY      := $(VENV)/bin/python
 STAMP   := $(VENV)/.installed
 JOBS    ?= 2
 PYTEST  := $(PY) -m pytest -n $(JOBS) -q
-# The demo image: the CC0 gravel photograph shipped inside scikit-image's wheel.
-IMAGE   ?= $(shell [ -x $(PY) ] && $(PY) -c 'import os, skimage.data as d; print(os.path.join(os.path.dirname(d.__file__), "gravel.png"))' 2>/dev/null)
-DEMO_PNG ?= build/demo/corners.png
-DEMO_CSV ?= build/demo/corners.csv
+# The demo: a 1920x1080 scene made from scikit-image's rocket.jpg (flows/demo/scene.py),
+# or IMAGE=... for your own; both the OpenCV configuration and the paper's.
+DEMO     := build/demo
+IMAGE    ?= $(DEMO)/scene_1920x1080.png
+DEMO_T   ?= 20
 
 .PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean \
 	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado synth bench regmap
 
 help:
-	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a real photograph, writes $(DEMO_PNG)"
+	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a 1920x1080 photograph, writes $(DEMO)/*.png"
 	@echo "make test       lint, golden tests, cocotb regression, synthesis checks"
 	@echo "make test-full  the same plus the 'slow' cases"
 	@echo "make sim        cocotb regression only"
@@ -32,7 +33,7 @@ help:
 	@echo "make vivado-ooc   out-of-context synthesis + implementation at 150 MHz, reports in build/vivado/ooc (needs Vivado)"
 
 # ---- set-up ----------------------------------------------------------------
-setup: $(STAMP) check-ghdl
+setup: $(STAMP) check-ghdl check-verilator
 
 $(STAMP): pyproject.toml requirements.lock
 	@python3 -c 'import sys; sys.exit(sys.version_info < (3, 11))' || { \
@@ -55,11 +56,25 @@ check-ghdl:
 	  else echo "make: GHDL >= 2.0 is missing: run 'sudo apt-get install -y ghdl'"; exit 1; fi; \
 	fi
 
+# The fast simulation engine: Verilator and a C++ compiler (Debian 12: Verilator 5.006).
+.PHONY: check-verilator
+check-verilator:
+	@if ! command -v verilator >/dev/null || ! command -v g++ >/dev/null; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "make: installing Verilator and g++ with apt-get"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq verilator g++ make >/dev/null; \
+	  else echo "make: Verilator and g++ are missing: run 'sudo apt-get install -y verilator g++ make'"; exit 1; fi; \
+	fi
+
 # ---- the two README commands -------------------------------------------------
 demo: setup
-	@mkdir -p $(dir $(DEMO_PNG))
-	$(VENV)/bin/fastnms compare "$(IMAGE)" --score opencv --nms 3x3 --csv $(DEMO_CSV) --png $(DEMO_PNG)
-	@echo "wrote $(DEMO_PNG) and $(DEMO_CSV) (the corners the RTL emitted)"
+	@mkdir -p $(DEMO)
+	@if [ "$(IMAGE)" = "$(DEMO)/scene_1920x1080.png" ]; then $(PY) -m flows.demo.scene $(IMAGE); fi
+	$(VENV)/bin/fastnms compare "$(IMAGE)" -t $(DEMO_T) --score opencv --nms 3x3 \
+	  --csv $(DEMO)/opencv_3x3.csv --png $(DEMO)/opencv_3x3.png
+	$(VENV)/bin/fastnms compare "$(IMAGE)" -t $(DEMO_T) --score sad --nms region4 \
+	  --csv $(DEMO)/paper_sad_region4.csv --png $(DEMO)/paper_sad_region4.png
+	@echo "wrote $(DEMO)/opencv_3x3.png and $(DEMO)/paper_sad_region4.png (+ .csv): the corners the RTL emitted"
 
 test: setup lint
 	$(PYTEST) -m "not slow"

@@ -22,14 +22,17 @@ import numpy as np
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
 from fastnms.sim.run import (
+    ENGINES,
     MAX_HEIGHT,
     MAX_WIDTH,
     MIN_SIZE,
+    FrameResult,
     SimError,
     SimResult,
     check_size,
     run_rtl,
 )
+from fastnms.sim.timing import Pattern, Timing
 
 PROG = "fastnms"
 EXIT_USAGE = 2
@@ -180,9 +183,10 @@ def png_bytes(canvas: np.ndarray) -> bytes:
 # ---- subcommands -----------------------------------------------------------------------
 
 
-def add_detection_args(p: argparse.ArgumentParser) -> None:
+def add_detection_args(p: argparse.ArgumentParser, with_image: bool = True) -> None:
     """IMAGE, threshold, score, NMS and the output files, shared by every subcommand."""
-    p.add_argument("image", metavar="IMAGE", help="input image (any format OpenCV reads)")
+    if with_image:
+        p.add_argument("image", metavar="IMAGE", help="input image (any format OpenCV reads)")
     p.add_argument(
         "-t",
         "--threshold",
@@ -226,22 +230,84 @@ def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     return p
 
 
+VIDEO_SUFFIXES = (".avi", ".mp4", ".mkv", ".mov", ".webm", ".m4v", ".mpg", ".mpeg")
+IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".webp")
+
+
+def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
+    """Inputs, engine and timing options shared by `sim` and `compare`."""
+    p.add_argument(
+        "images",
+        metavar="IMAGE",
+        nargs="+",
+        help=f"input images (any format OpenCV reads), {what}; a directory stands for its "
+        "image files in name order, a video file for its frames",
+    )
+    add_detection_args(p, with_image=False)
+    p.add_argument(
+        "--engine",
+        choices=ENGINES,
+        default="verilator",
+        help="verilator (default): the synthesized netlist compiled by Verilator, about a "
+        "million clocks per second; cocotb: the RTL under GHDL with cocotb and cocotbext-axi, "
+        "a few thousand",
+    )
+    p.add_argument(
+        "--idle",
+        type=pattern_arg,
+        default=Pattern(),
+        metavar="P",
+        help="input idles: a rate in [0, 1) or a repeated pattern of 0/1 (1 = no pixel offered "
+        "on that clock); default none",
+    )
+    p.add_argument(
+        "--stall",
+        type=pattern_arg,
+        default=Pattern(),
+        metavar="P",
+        help="output back-pressure on the corner records, as --idle (1 = tready low)",
+    )
+    p.add_argument(
+        "--seed", type=count_arg, default=1, metavar="N", help="seed of the rate patterns"
+    )
+    p.add_argument(
+        "--hblank",
+        type=count_arg,
+        default=0,
+        metavar="N",
+        help="clocks without video after each line (verilator engine)",
+    )
+    p.add_argument(
+        "--vblank",
+        type=count_arg,
+        default=0,
+        metavar="N",
+        help="clocks without video after each frame's last line, instead of --hblank "
+        "(verilator engine)",
+    )
+
+
 def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
         "sim",
-        help="run the RTL (fastnms_axi under GHDL) on an image",
+        help="run the RTL (fastnms_axi, simulated) on images",
         description=(
-            "Simulate the IP's top level, fastnms_axi, under GHDL (cocotb and cocotbext-axi "
-            "drive its AXI4-Lite and AXI4-Stream ports) and write the corners it emitted. "
-            f"{GREY_NOTE} Images from {MIN_SIZE}x{MIN_SIZE} to {MAX_WIDTH}x{MAX_HEIGHT}. "
-            "Needs the source tree and GHDL. Prints cycles, cycles per pixel and wall time."
+            "Simulate the IP's top level, fastnms_axi, on the images, sent back to back as "
+            "consecutive frames (AXI4-Stream video in, AXI4-Lite set-up of each frame's size "
+            "and threshold, corner records out), and write the corners it emitted. "
+            f"{GREY_NOTE} Frames from {MIN_SIZE}x{MIN_SIZE} to {MAX_WIDTH}x{MAX_HEIGHT}. "
+            "Needs the source tree, GHDL and (default engine) Verilator with a C++ compiler; "
+            "the first run of a configuration builds the engine. Prints corners, cycles, "
+            "cycles per pixel and wall time per frame. With several frames the CSV has a "
+            "first column `frame` (0 for the first image) and the JSON a list `frames`."
         ),
     )
-    add_detection_args(p)
+    add_rtl_args(p, "one frame each")
     p.add_argument(
         "--json",
         metavar="OUT.json",
-        help="write width, height, threshold, score, nms, corners, cycles, wall_seconds",
+        help="write width, height, threshold, score, nms, engine, timing, corners, cycles, "
+        "input_stalls, wall_seconds (and `frames` for several)",
     )
     return p
 
@@ -249,16 +315,33 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 def add_compare_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
         "compare",
-        help="run the RTL and the golden model on an image and compare them",
+        help="run the RTL and the golden model on images and compare them",
         description=(
-            "Run `fastnms sim` and the golden model on IMAGE (and, for opencv + 3x3, "
-            "cv2.FastFeatureDetector) and compare the sets of (x, y, score). Prints the "
-            "first differences; exit status 1 on any difference, 0 when identical. "
+            "Run `fastnms sim` and the golden model on the images (and, for opencv + 3x3, "
+            "cv2.FastFeatureDetector) and compare the sets of (x, y, score) frame by frame. "
+            "Prints the first differences; exit status 1 on any difference, 0 when identical. "
             "--csv and --png write the RTL's corners."
         ),
     )
-    add_detection_args(p)
+    add_rtl_args(p, "sent as consecutive frames")
     return p
+
+
+def pattern_arg(text: str) -> Pattern:
+    try:
+        return Pattern.parse(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def count_arg(text: str) -> int:
+    try:
+        value = int(text, 10)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {value}")
+    return value
 
 
 def check_outputs(*paths: str | None) -> None:
@@ -275,6 +358,44 @@ def load_input(path: str) -> np.ndarray:
         return load_grey(path)
     except ImageError as e:
         raise UsageError(str(e)) from None
+
+
+def load_video(path: str) -> list[np.ndarray]:
+    """Every frame of a video file, grey as load_grey converts images."""
+    capture = cv2.VideoCapture(path)
+    frames = []
+    try:
+        while True:
+            ok, bgr = capture.read()
+            if not ok:
+                break
+            frames.append(cv2.cvtColor(bgr, cv2.COLOR_BGR2GRAY))
+    finally:
+        capture.release()
+    if not frames:
+        raise UsageError(f"{path}: no frame OpenCV can decode in this video file")
+    return frames
+
+
+def load_frames(paths: Sequence[str]) -> list[tuple[str, np.ndarray]]:
+    """(name, grey image) for each input: an image, a directory's image files in name
+    order, or a video file's frames (named file#index)."""
+    frames: list[tuple[str, np.ndarray]] = []
+    for path in paths:
+        if os.path.isdir(path):
+            files = sorted(
+                e.path
+                for e in os.scandir(path)
+                if e.is_file() and e.name.lower().endswith(IMAGE_SUFFIXES)
+            )
+            if not files:
+                raise UsageError(f"{path}: a directory without image files")
+            frames += [(f, load_input(f)) for f in files]
+        elif path.lower().endswith(VIDEO_SUFFIXES) and os.path.isfile(path):
+            frames += [(f"{path}#{i}", img) for i, img in enumerate(load_video(path))]
+        else:
+            frames.append((path, load_input(path)))
+    return frames
 
 
 def write_outputs(img: np.ndarray, records: np.ndarray, args: argparse.Namespace, extra=()) -> None:
@@ -318,12 +439,12 @@ class Progress:
     def __init__(self) -> None:
         self.shown = False
 
-    def __call__(self, rows_in: int, rows: int, seconds: float) -> None:
+    def __call__(self, pixels_in: int, pixels: int, seconds: float) -> None:
         if seconds < self.AFTER_SECONDS:
             return
-        pct = 100 * rows_in // max(1, rows)
+        pct = 100 * pixels_in // max(1, pixels)
         print(
-            f"\r{PROG} sim: {rows_in}/{rows} lines in ({pct} %), {seconds:.0f} s",
+            f"\r{PROG} sim: {pixels_in}/{pixels} pixels in ({pct} %), {seconds:.0f} s",
             end="",
             file=sys.stderr,
             flush=True,
@@ -333,51 +454,134 @@ class Progress:
     def done(self) -> None:
         if self.shown:
             print(file=sys.stderr)
+            self.shown = False
 
 
-def simulate(img: np.ndarray, args: argparse.Namespace) -> SimResult:
-    why = check_size(img)
-    if why:
-        raise UsageError(f"{args.image}: {why}")
+def timing_of(args: argparse.Namespace) -> Timing:
+    return Timing(args.idle, args.stall, args.seed, args.hblank, args.vblank)
+
+
+def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> SimResult:
+    for name, img in frames:
+        why = check_size(img)
+        if why:
+            raise UsageError(f"{name}: {why}")
+    if args.engine != "verilator" and (args.hblank or args.vblank):
+        raise UsageError("--hblank and --vblank need --engine verilator")
     progress = Progress()
+
+    def announce(text: str) -> None:
+        print(f"{PROG} sim: {text}", file=sys.stderr, flush=True)
+
     try:
-        return run_rtl(img, args.threshold, args.score, args.nms, progress)
+        sim = run_rtl(
+            [(img, args.threshold) for _, img in frames],
+            args.score,
+            args.nms,
+            engine=args.engine,
+            timing=timing_of(args),
+            progress=progress,
+            announce=announce,
+        )
     except SimError as e:
         raise UsageError(str(e)) from None
     finally:
         progress.done()
+    if sim.build_seconds is not None:
+        announce(f"built in {sim.build_seconds:.1f} s (reused from now on)")
+    return sim
 
 
-def sim_summary(name: str, img: np.ndarray, args: argparse.Namespace, sim: SimResult) -> str:
-    h, w = img.shape
+def frame_summary(name: str, args: argparse.Namespace, frame: FrameResult) -> str:
+    w, h = frame.width, frame.height
     return (
         f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}: "
-        f"{sim.records.shape[0]} corners; {sim.cycles} cycles, "
-        f"{sim.cycles / (w * h):.4f} cycles per pixel; {sim.wall_seconds:.1f} s wall"
+        f"{frame.records.shape[0]} corners; {frame.cycles} cycles, "
+        f"{frame.cycles / (w * h):.4f} cycles per pixel"
     )
 
 
+def sim_summary(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim: SimResult):
+    lines = [
+        frame_summary(os.path.basename(name), args, f)
+        for (name, _), f in zip(frames, sim.frames, strict=True)
+    ]
+    pixels = sum(f.width * f.height for f in sim.frames)
+    tail = f"{sim.wall_seconds:.1f} s wall ({args.engine})"
+    if len(frames) == 1:
+        lines[0] += f"; {tail}"
+    else:
+        lines.append(
+            f"{len(frames)} frames: {sum(f.records.shape[0] for f in sim.frames)} corners; "
+            f"{sim.cycles} cycles, {sim.cycles / pixels:.4f} cycles per pixel; {tail}"
+        )
+    return "\n".join(lines)
+
+
+def frames_csv_bytes(sim: SimResult) -> bytes:
+    lines = ["frame,x,y,score"]
+    for i, f in enumerate(sim.frames):
+        lines += [f"{i},{x},{y},{s}" for x, y, s in f.records.tolist()]
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim: SimResult):
+    pixels = sum(f.width * f.height for f in sim.frames)
+    summary: dict[str, object] = {}
+    if len(frames) == 1:
+        summary |= {"width": sim.frames[0].width, "height": sim.frames[0].height}
+    summary |= {
+        "threshold": args.threshold,
+        "score": args.score,
+        "nms": args.nms,
+        "engine": args.engine,
+        "timing": timing_of(args).as_dict(),
+        "corners": sum(int(f.records.shape[0]) for f in sim.frames),
+        "cycles": sim.cycles,
+        "cycles_per_pixel": sim.cycles / pixels,
+        "input_stalls": sim.input_stalls,
+        "wall_seconds": sim.wall_seconds,
+    }
+    if len(frames) > 1:
+        summary["frames"] = [
+            {
+                "image": name,
+                "width": f.width,
+                "height": f.height,
+                "corners": int(f.records.shape[0]),
+                "cycles": f.cycles,
+                "input_stalls": f.input_stalls,
+            }
+            for (name, _), f in zip(frames, sim.frames, strict=True)
+        ]
+    return (json.dumps(summary, indent=2) + "\n").encode("ascii")
+
+
+def rtl_inputs(args: argparse.Namespace, *outputs: str | None) -> list[tuple[str, np.ndarray]]:
+    check_outputs(*outputs)
+    frames = load_frames(args.images)
+    if len(frames) > 1 and args.png:
+        raise UsageError(f"--png draws one image; {len(frames)} frames were given")
+    return frames
+
+
+def write_sim_outputs(frames, sim: SimResult, args: argparse.Namespace, extra=()) -> None:
+    if len(frames) == 1:
+        write_outputs(frames[0][1], sim.records, args, extra)
+        return
+    extra = list(extra)
+    if args.csv:
+        extra.append((args.csv, frames_csv_bytes(sim)))
+    args_no_csv = argparse.Namespace(**{**vars(args), "csv": None})
+    write_outputs(frames[0][1], sim.records, args_no_csv, extra)
+
+
 def run_sim(args: argparse.Namespace) -> int:
-    check_outputs(args.csv, args.png, args.json)
-    img = load_input(args.image)
-    sim = simulate(img, args)
-    h, w = img.shape
-    extra = []
-    if args.json:
-        summary = {
-            "width": w,
-            "height": h,
-            "threshold": args.threshold,
-            "score": args.score,
-            "nms": args.nms,
-            "corners": int(sim.records.shape[0]),
-            "cycles": sim.cycles,
-            "cycles_per_pixel": sim.cycles / (w * h),
-            "wall_seconds": sim.wall_seconds,
-        }
-        extra.append((args.json, (json.dumps(summary, indent=2) + "\n").encode("ascii")))
-    write_outputs(img, sim.records, args, extra)
-    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    frames = rtl_inputs(args, args.csv, args.png, args.json)
+    sim = simulate(frames, args)
+    extra = [(args.json, sim_json(frames, args, sim))] if args.json else []
+    write_sim_outputs(frames, sim, args, extra)
+    print(sim_summary(frames, args, sim))
     return 0
 
 
@@ -399,23 +603,27 @@ def opencv_records(img: np.ndarray, threshold: int) -> np.ndarray:
 
 
 def run_compare(args: argparse.Namespace) -> int:
-    check_outputs(args.csv, args.png)
-    img = load_input(args.image)
-    sim = simulate(img, args)
-    references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
-    if args.score == "opencv" and args.nms == "3x3":
-        references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
-    write_outputs(img, sim.records, args)
-    print(sim_summary(os.path.basename(args.image), img, args, sim))
+    frames = rtl_inputs(args, args.csv, args.png)
+    sim = simulate(frames, args)
+    write_sim_outputs(frames, sim, args)
+    print(sim_summary(frames, args, sim))
     status = 0
-    for name, want in references.items():
-        diff = differences(sim.records, want)
-        if diff:
-            status = 1
-            print(f"rtl vs {name}: DIFFERENT ({sim.records.shape[0]} vs {want.shape[0]} corners)")
-            print("\n".join(diff))
-        else:
-            print(f"rtl vs {name}: identical ({want.shape[0]} corners)")
+    for i, ((name, img), got) in enumerate(zip(frames, sim.frames, strict=True)):
+        references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
+        if args.score == "opencv" and args.nms == "3x3":
+            references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
+        prefix = f"frame {i} ({os.path.basename(name)}): " if len(frames) > 1 else ""
+        for ref, want in references.items():
+            diff = differences(got.records, want)
+            if diff:
+                status = 1
+                print(
+                    f"{prefix}rtl vs {ref}: DIFFERENT "
+                    f"({got.records.shape[0]} vs {want.shape[0]} corners)"
+                )
+                print("\n".join(diff))
+            else:
+                print(f"{prefix}rtl vs {ref}: identical ({want.shape[0]} corners)")
     return status
 
 

@@ -48,6 +48,12 @@ class FrameResult:
     records: np.ndarray  # (N, 3) int64: x, y, score, sorted by y then x
     cycles: int  # the frame's first input beat accepted to its last record, inclusive
     input_stalls: int  # clocks with video tvalid high and tready low, during this frame
+    # The clock numbers of the frame's first and last input beats and of its last
+    # record, for the bench's frame intervals and latencies. Each engine counts
+    # from its own origin: only differences compare across engines.
+    first_pixel: int
+    last_pixel: int
+    last_record: int
 
 
 @dataclass
@@ -100,7 +106,7 @@ def run_rtl(
     nms: str,
     *,
     engine: str = "verilator",
-    timing: Timing = Timing(),
+    timing: Timing = Timing(),  # noqa: B008 (frozen: one shared default is safe)
     progress: Callable[[int, int, float], None] | None = None,
     announce: Callable[[str], None] | None = None,
     generics: dict[str, object] | None = None,
@@ -133,6 +139,9 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
             records=decode_words(raw.words),
             cycles=raw.last_record - raw.first_pixel + 1,
             input_stalls=raw.input_stalls,
+            first_pixel=raw.first_pixel,
+            last_pixel=raw.last_pixel,
+            last_record=raw.last_record,
         )
         for (img, threshold), raw in zip(frames, raw_frames, strict=True)
     ]
@@ -217,8 +226,13 @@ def _run_cocotb(frames, generics, timing, progress) -> SimResult:
             raise SimError(f"the simulation failed; see {log}")
         result = json.loads(out.read_text())
     raw = [
-        verilator.RawFrame(f["first_pixel"], f["last_pixel"], f["last_record"],
-                           np.array(f["words"], dtype=np.uint64), f["input_stalls"])
+        verilator.RawFrame(
+            f["first_pixel"],
+            f["last_pixel"],
+            f["last_record"],
+            np.array(f["words"], dtype=np.uint64),
+            f["input_stalls"],
+        )
         for f in result["frames"]
     ]
     return SimResult(

@@ -172,9 +172,7 @@ def build(
         netlist = where / f"{TOP}.v"
         with open(where / "build.log", "wb") as log:
             sources = synthesizable_sources(where / "fastnms_axi_no_attributes.vhd")
-            _run_logged(
-                ["ghdl", "-a", "--std=08", f"--workdir={work}", *map(str, sources)], log
-            )
+            _run_logged(["ghdl", "-a", "--std=08", f"--workdir={work}", *map(str, sources)], log)
             gens = [f"-g{k}={v}" for k, v in generics.items()]
             with open(netlist, "wb") as out:
                 cmd = ["ghdl", "--synth", "--std=08", f"--workdir={work}", *gens]

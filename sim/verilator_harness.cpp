@@ -124,12 +124,26 @@ int main(int argc, char** argv) {
   if (!records_out) fail("cannot write the record file");
 
   auto top = std::make_unique<Vfastnms_axi>(context.get());
+  // Every input explicitly: +verilator+rand+reset+2 randomises inputs too.
   top->aclk = 0;
   top->aresetn = 0;
+  top->s_axis_video_tdata = 0;
+  top->s_axis_video_tuser = 0;
+  top->s_axis_video_tlast = 0;
+  top->s_axis_video_tvalid = 0;
+  top->m_axis_corners_tready = 0;
   top->m_axis_score_tready = 0;
-  top->s_axi_ctrl_bready = 1;
-  top->s_axi_ctrl_rready = 1;
+  top->s_axi_ctrl_awaddr = 0;
+  top->s_axi_ctrl_awprot = 0;
+  top->s_axi_ctrl_awvalid = 0;
+  top->s_axi_ctrl_wdata = 0;
   top->s_axi_ctrl_wstrb = 0xF;
+  top->s_axi_ctrl_wvalid = 0;
+  top->s_axi_ctrl_bready = 1;
+  top->s_axi_ctrl_araddr = 0;
+  top->s_axi_ctrl_arprot = 0;
+  top->s_axi_ctrl_arvalid = 0;
+  top->s_axi_ctrl_rready = 1;
 
   // One clock: settle the inputs set since the last edge, sample the handshakes
   // (the values the rising edge takes), then the edge.
@@ -199,6 +213,7 @@ int main(int argc, char** argv) {
     if (s.w) w_done = true;
     if (s.ar) ar_done = true;
     if (s.b) {
+      if (writes.empty()) fail("an AXI4-Lite write response nobody asked for");
       configured = writes.front().configures;
       writes.pop_front();
       write_active = aw_done = w_done = false;
@@ -230,6 +245,7 @@ int main(int argc, char** argv) {
       ++results[in_frame].input_stalls;
     }
     if (s.video) {
+      if (in_frame == frames.size()) fail("a pixel taken after the last frame");
       FrameResult& r = results[in_frame];
       if (in_pos == 0) {
         r.first_pixel = cycle;
@@ -269,6 +285,7 @@ int main(int argc, char** argv) {
 
     // ---- corner records out ---------------------------------------------------
     if (s.record) {
+      if (out_frame == frames.size()) fail("a corner record after the last frame's");
       std::fwrite(&s.record_word, sizeof s.record_word, 1, records_out);
       FrameResult& r = results[out_frame];
       ++r.records;

@@ -1,4 +1,5 @@
-"""`fastnms sim` and `fastnms compare`: the RTL top under GHDL from the command line."""
+"""`fastnms sim` and `fastnms compare`: the RTL top, simulated, from the command line
+(the fast engine unless a test says otherwise)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ from fastnms import main as cli
 from fastnms.golden.model import detect
 from fastnms.sim import run as sim
 from fastnms.testing import images as testimages
+
+from cli.tests.test_cli import run
 
 
 @pytest.fixture(scope="module")
@@ -46,8 +49,104 @@ def test_sim_writes_the_rtl_corners(photo: Path, tmp_path: Path, capsys, score: 
     assert 64 * 48 <= summary["cycles"] <= 64 * 48 + 8 * 64 + 200, summary
     assert summary["wall_seconds"] > 0
     assert cv2.imread(str(out_png)).shape == (48, 64, 3)
+    assert summary["engine"] == "verilator" and summary["input_stalls"] >= 0
     line = capsys.readouterr().out
     assert f"{len(want)} corners; {summary['cycles']} cycles" in line
+
+
+def test_engines_give_the_same_json(photo: Path, tmp_path: Path):
+    """--engine cocotb and the default engine: the same corners, cycles and input
+    stalls, with idles and stalls."""
+    got = {}
+    for engine in ("verilator", "cocotb"):
+        out = tmp_path / f"{engine}.json"
+        argv = ["sim", str(photo), "--engine", engine, "--idle", "0.3", "--stall", "0110"]
+        assert cli.main([*argv, "--seed", "5", "--json", str(out), "--csv", f"{out}.csv"]) == 0
+        summary = json.loads(out.read_text())
+        assert summary["engine"] == engine
+        assert summary["timing"] == {
+            "idle": "0.3",
+            "stall": "0110",
+            "seed": 5,
+            "hblank": 0,
+            "vblank": 0,
+        }
+        got[engine] = (summary["corners"], summary["cycles"], summary["input_stalls"])
+        got[engine + " csv"] = Path(f"{out}.csv").read_text()
+    assert got["verilator"] == got["cocotb"]
+    assert got["verilator csv"] == got["cocotb csv"]
+
+
+def test_several_frames(photo: Path, tmp_path: Path, capsys):
+    """Images sent back to back (sizes differ; a directory stands for its images):
+    CSV with a frame column, JSON with per-frame figures, one summary line each."""
+    small = tmp_path / "frames" / "b_small.png"
+    small.parent.mkdir()
+    img = cv2.imread(str(photo), cv2.IMREAD_GRAYSCALE)
+    cv2.imwrite(str(small), img[8:40, 4:44])
+    cv2.imwrite(str(small.with_name("a_same.png")), img)
+    out_csv, out_json = tmp_path / "f.csv", tmp_path / "f.json"
+    argv = ["sim", str(photo), str(small.parent), "-t", "12", "--hblank", "20"]
+    assert cli.main([*argv, "--csv", str(out_csv), "--json", str(out_json)]) == 0
+    images = [img, img, img[8:40, 4:44]]  # the directory's files in name order
+    with open(out_csv) as f:
+        rows = list(csv.DictReader(f))
+    for i, frame in enumerate(images):
+        want = [tuple(int(v) for v in r) for r in detect(frame, 12, "opencv", "3x3")]
+        got = [(int(r["x"]), int(r["y"]), int(r["score"])) for r in rows if r["frame"] == str(i)]
+        assert got == want, i
+    summary = json.loads(out_json.read_text())
+    frames = summary["frames"]
+    assert [(f["width"], f["height"]) for f in frames] == [(64, 48), (64, 48), (40, 32)]
+    assert summary["corners"] == len(rows) == sum(f["corners"] for f in frames)
+    assert "width" not in summary and summary["timing"]["hblank"] == 20
+    # hblank 20 after each of a 48-line frame's first 47 lines.
+    assert frames[0]["cycles"] >= 64 * 48 + 47 * 20
+    assert frames[0]["cycles"] == frames[1]["cycles"]  # the same image, the same clocks
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 4 and out[-1].startswith("3 frames: ")
+
+
+def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
+    """A video file stands for its frames (here 3 frames of MJPG in AVI)."""
+    video = tmp_path / "clip.avi"
+    img = cv2.imread(str(photo))
+    writer = cv2.VideoWriter(str(video), cv2.VideoWriter_fourcc(*"MJPG"), 10, (64, 48))
+    for shift in range(3):
+        writer.write(np.roll(img, 4 * shift, axis=1))
+    writer.release()
+    out_json = tmp_path / "v.json"
+    assert cli.main(["sim", str(video), "--json", str(out_json)]) == 0
+    frames = json.loads(out_json.read_text())["frames"]
+    assert [f["image"] for f in frames] == [f"{video}#{i}" for i in range(3)]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--png", "x.png", "IMG", "IMG"], "--png draws one image"),
+        (["--engine", "cocotb", "--hblank", "4", "IMG"], "--hblank and --vblank need"),
+        (["--stall", "111", "IMG"], "pauses on every clock"),
+        (["--idle", "1.0", "IMG"], "rate must be in [0, 1)"),
+        (["--idle", "abc", "IMG"], "expected a rate"),
+        (["--hblank", "-1", "IMG"], "expected an integer >= 0"),
+        (["EMPTYDIR"], "a directory without image files"),
+    ],
+)
+def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
+    (tmp_path / "empty").mkdir()
+    subst = {"IMG": str(photo), "EMPTYDIR": str(tmp_path / "empty"), "x.png": str(tmp_path / "x")}
+    status, _, err = run(["sim", *[subst.get(a, a) for a in argv]], capsys)
+    assert status == 2
+    assert err.startswith("fastnms: error: ") and message in err and err.count("\n") == 1
+
+
+def test_missing_simulator_is_named(photo: Path, capsys, monkeypatch):
+    """Without Verilator on PATH, `fastnms sim` says what is missing and how to get it."""
+    monkeypatch.setenv("PATH", "/nonexistent")
+    assert cli.main(["sim", str(photo)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("fastnms: error: ") and "verilator" in err and "apt-get" in err
 
 
 def test_compare_identical_and_different(photo: Path, capsys, monkeypatch):
@@ -59,7 +158,7 @@ def test_compare_identical_and_different(photo: Path, capsys, monkeypatch):
 
     def one_corner_off(*args, **kwargs):
         result = real_run(*args, **kwargs)
-        result.records[0, 2] += 1
+        result.frames[0].records[0, 2] += 1
         return result
 
     monkeypatch.setattr(cli, "run_rtl", one_corner_off)

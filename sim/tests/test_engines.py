@@ -1,0 +1,124 @@
+"""The two simulation engines of fastnms_axi (sim/run.py) against each other and
+against the golden model: the same records and the same clock counts, frame by
+frame, for every score/NMS variant, with and without input idles and output
+stalls; the fast engine's timing options and its independence from power-up
+values; whole photographs at 1920x1080 through the top.
+
+Every build is the command line's (MAX 1920x1080), so the tests share it with
+`fastnms sim` and the demo."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.sim.run import SimResult, run_rtl
+from fastnms.sim.timing import Pattern, Timing
+from fastnms.testing import images as testimages
+
+VARIANTS = [(s, n) for s in SCORES for n in NMS_MODES]
+IDS = [f"{s}-{n}" for s, n in VARIANTS]
+
+
+def mixed_frames(rng: np.random.Generator) -> list[tuple[np.ndarray, int]]:
+    """Frames of different sizes and kinds, back to back: a photograph crop, blurred
+    noise at a low threshold (dense corners and big regions), a small checkerboard."""
+    return [
+        (testimages.crop(testimages.real_images()[0], 72, 40), 15),
+        (testimages.blurred_noise(rng, 33, 20), 4),
+        (testimages.checkerboard(rng, 24, 16), 20),
+    ]
+
+
+def assert_golden(result: SimResult, frames, score: str, nms: str, seed: int) -> None:
+    assert any(len(f.records) for f in result.frames), "no corner at all: a weak test"
+    for i, ((img, t), got) in enumerate(zip(frames, result.frames, strict=True)):
+        want = detect(img, t, score, nms)
+        assert np.array_equal(got.records, want), (
+            f"frame {i}: {len(got.records)} records, golden {len(want)} (seed {seed})"
+        )
+
+
+def assert_same_run(a: SimResult, b: SimResult) -> None:
+    assert a.cycles == b.cycles and a.input_stalls == b.input_stalls
+    for fa, fb in zip(a.frames, b.frames, strict=True):
+        assert np.array_equal(fa.records, fb.records)
+        assert (fa.cycles, fa.input_stalls) == (fb.cycles, fb.input_stalls)
+
+
+@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=IDS)
+def test_engines_agree(score: str, nms: str, rng, seed):
+    """Both engines, three frames back to back, without and then with idles and
+    stalls: identical records and clock counts, equal to the golden model."""
+    frames = mixed_frames(rng)
+    busy = Timing(idle=Pattern(rate=0.25), stall=Pattern(rate=0.4), seed=seed % 1000)
+    results = {}
+    for name, timing in [("free", Timing()), ("busy", busy)]:
+        fast = run_rtl(frames, score, nms, timing=timing)
+        assert_golden(fast, frames, score, nms, seed)
+        results[name] = fast
+        if name == "busy":  # the cocotb engine once per variant: it is the slow one
+            slow = run_rtl(frames, score, nms, engine="cocotb", timing=timing)
+            assert_same_run(fast, slow)
+    # The pauses cost clocks; at one pixel per clock a free 3x3 frame takes W x H
+    # plus its fill, and no input clock is lost to idles.
+    assert results["busy"].cycles > results["free"].cycles
+
+
+def test_engines_agree_without_pauses(rng, seed):
+    """The cocotb engine without idles or stalls, on the variants whose timing
+    differs most (the region NMS holds the input on dense content)."""
+    frames = mixed_frames(rng)
+    for score, nms in [("opencv", "3x3"), ("sad", "region8")]:
+        fast = run_rtl(frames, score, nms)
+        slow = run_rtl(frames, score, nms, engine="cocotb")
+        assert_same_run(fast, slow)
+        assert_golden(fast, frames, score, nms, seed)
+
+
+def test_power_up_values_do_not_matter(rng):
+    """The netlist's registers and memories start from random values (Verilator's
+    --x-initial unique, three seeds): same records and clock counts each time."""
+    frames = mixed_frames(rng)
+    for score, nms in [("opencv", "3x3"), ("sad", "region4")]:
+        runs = [run_rtl(frames, score, nms, power_up_seed=s) for s in (1, 2, 3)]
+        for other in runs[1:]:
+            assert_same_run(runs[0], other)
+
+
+def test_blanking_adds_exactly_its_clocks(rng):
+    """hblank N after each line and vblank V after each frame: the 3x3 top takes
+    one pixel per clock, so a frame's cycles grow by N per line boundary and the
+    next frame starts V clocks later."""
+    frames = [(testimages.blurred_noise(rng, 40, 30), 5)] * 2
+    base = run_rtl(frames, "opencv", "3x3")
+    blank = run_rtl(frames, "opencv", "3x3", timing=Timing(hblank=7, vblank=100))
+    for f0, f1 in zip(base.frames, blank.frames, strict=True):
+        assert np.array_equal(f0.records, f1.records)
+        assert f1.cycles == f0.cycles + 7 * (30 - 1)
+    # The few stall clocks at each start of frame stay: blanking does not hide them.
+    assert blank.input_stalls == base.input_stalls
+    assert blank.cycles - base.cycles == 2 * 7 * (30 - 1) + 100
+
+
+def test_bit_patterns_are_periodic():
+    """A stall pattern of 0/1 repeats exactly: stalling every other clock halves
+    the output rate but not the input rate of a 3x3 frame with few corners."""
+    img = testimages.crop(testimages.real_images()[0], 64, 32)
+    free = run_rtl([(img, 30)], "opencv", "3x3")
+    stalled = run_rtl([(img, 30)], "opencv", "3x3", timing=Timing(stall=Pattern(bits="01")))
+    assert np.array_equal(free.records, stalled.records)
+    assert stalled.input_stalls == free.input_stalls
+
+
+@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=IDS)
+def test_photograph_1920x1080(score: str, nms: str, seed):
+    """A real photograph scaled to 1920x1080 through the top, at two thresholds,
+    back to back: the golden model's records; for the 3x3 and none variants,
+    exactly one pixel per clock in (the first frame's start-up stalls aside)."""
+    img = testimages.cover(testimages.crop(testimages.real_images()[2], 480, 270), 1920, 1080)
+    frames = [(img, 20), (img, 10)]
+    result = run_rtl(frames, score, nms)
+    assert_golden(result, frames, score, nms, seed)
+    if nms in ("3x3", "none"):
+        assert result.frames[1].input_stalls == result.frames[0].input_stalls
