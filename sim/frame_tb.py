@@ -69,7 +69,7 @@ class Run:
         self.last_record = [0] * len(images)
         self.stalls = [0] * len(images)
         self.words: list[list[int]] = [[] for _ in images]
-        self.first_pixel_seen = [Event() for _ in images]
+        self.first_line_seen = [Event() for _ in images]
         self.done = Event()
 
     async def clock_edges(self) -> None:
@@ -84,8 +84,9 @@ class Run:
                 if dut.s_axis_video_tready.value == 1:
                     if self.in_pos == 0:
                         self.first_pixel[self.in_frame] = self.cycle
-                        self.first_pixel_seen[self.in_frame].set()
                     self.in_pos += 1
+                    if self.in_pos == self.images[self.in_frame].shape[1]:
+                        self.first_line_seen[self.in_frame].set()
                     self.pixels_in += 1
                     if self.in_pos == self.sizes[self.in_frame]:
                         self.last_pixel[self.in_frame] = self.cycle
@@ -152,7 +153,8 @@ async def run_frames(dut):
     for line in video_lines(images[0]):
         await source.send(line)
     for i in range(1, len(images)):
-        await run.first_pixel_seen[i - 1].wait()
+        # As the fast engine: once the previous frame's first line is in.
+        await run.first_line_seen[i - 1].wait()
         await configure(axil, images[i], thresholds[i])
         for line in video_lines(images[i]):
             await source.send(line)

@@ -7,7 +7,7 @@ and the bench, with either engine:
   (sim/frame_tb.py); a few thousand clocks per second.
 
 Both send the frames back to back (the next frame's size and threshold written
-over AXI4-Lite while the previous one goes in), count clocks the same way and
+over AXI4-Lite once the previous one's first line is in), count clocks the same way and
 draw the same seeded idle and stall patterns (sim/timing.py), so they give the
 same records and the same clock counts. Both need the source tree (rtl/).
 """

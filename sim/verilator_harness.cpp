@@ -247,11 +247,7 @@ int main(int argc, char** argv) {
     if (s.video) {
       if (in_frame == frames.size()) fail("a pixel taken after the last frame");
       FrameResult& r = results[in_frame];
-      if (in_pos == 0) {
-        r.first_pixel = cycle;
-        // The next frame's size and threshold, written while this one goes in.
-        if (in_frame + 1 < frames.size()) queue_config(in_frame + 1);
-      }
+      if (in_pos == 0) r.first_pixel = cycle;
       ++in_pos;
       ++pixels_in;
       video_valid = false;
@@ -260,6 +256,10 @@ int main(int argc, char** argv) {
       if (++in_line_pos == f.width) {
         in_line_pos = 0;
         blank = hblank;
+        // The next frame's size and threshold, written once this frame's first
+        // line is in: by then its start of frame has left the input buffer and
+        // taken the values it waited for (docs/fastnms_axi.md).
+        if (in_line == 0 && in_frame + 1 < frames.size()) queue_config(in_frame + 1);
         if (++in_line == f.height) {
           r.last_pixel = cycle;
           blank = vblank;

@@ -17,34 +17,22 @@ from __future__ import annotations
 
 import contextlib
 import json
-import re
 import sys
 from collections.abc import Iterator
 from pathlib import Path
 
-from fastnms.sim.sources import REPO, rtl_sources
+from fastnms.sim.sources import REPO
+from fastnms.sim.verilator import synthesizable_sources
 
 from flows.synth import synth
 
-TOP = REPO / "rtl" / "top" / "fastnms_axi.vhd"
 COPY = REPO / "build" / "synth" / "fastnms_axi_no_attributes.vhd"
-_SPEC = re.compile(r"^\s*attribute\s+x_interface_\w+\s+of\s+[^;]*;[ \t]*\n", re.I | re.M)
-
-
-def stripped_top() -> Path:
-    """A copy of fastnms_axi.vhd without the X_INTERFACE attribute specifications."""
-    text, count = _SPEC.subn("", TOP.read_text())
-    assert count > 0, "no X_INTERFACE attribute specifications found in fastnms_axi.vhd"
-    COPY.parent.mkdir(parents=True, exist_ok=True)
-    if not COPY.exists() or COPY.read_text() != text:
-        COPY.write_text(text)
-    return COPY
 
 
 def sources() -> list[Path]:
-    """rtl_sources() with fastnms_axi.vhd replaced by its synthesizable copy."""
-    copy = stripped_top()
-    return [copy if f == TOP else f for f in rtl_sources()]
+    """rtl_sources() with fastnms_axi.vhd replaced by its copy without the
+    X_INTERFACE attributes (the one the fast simulation engine synthesizes too)."""
+    return synthesizable_sources(COPY)
 
 
 def levels_outside(netlist_json: Path, top: str, inside: str = "core.") -> int:

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from fastnms.golden.image import load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
-from fastnms.sim.run import SimResult, run_rtl
+from fastnms.sim.run import SimResult, check_size, run_rtl
 from fastnms.sim.timing import Pattern, Timing
 from fastnms.testing import images as testimages
 
@@ -122,3 +123,19 @@ def test_photograph_1920x1080(score: str, nms: str, seed):
     assert_golden(result, frames, score, nms, seed)
     if nms in ("3x3", "none"):
         assert result.frames[1].input_stalls == result.frames[0].input_stalls
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=IDS)
+def test_every_photograph_through_the_top(score: str, nms: str, seed):
+    """Every real photograph (../shared/images, else scikit-image's), at its own
+    size, at thresholds 0, 10, 20 and 40, back to back through the top: the
+    golden model's records, frame by frame."""
+    frames = [
+        (load_grey(path), t)
+        for path in testimages.real_images()
+        for t in (0, 10, 20, 40)
+        if check_size(load_grey(path)) is None
+    ]
+    assert frames
+    assert_golden(run_rtl(frames, score, nms), frames, score, nms, seed)

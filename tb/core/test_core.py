@@ -35,8 +35,15 @@ def test_core_generated(request, score, nms):
     )
 
 
+# The three smallest photograph crops in `make test` (whole photographs go
+# through the top with the fast engine there: sim/tests/test_engines.py), all
+# six in `make test-full`.
+CROPS = [3, pytest.param(6, marks=pytest.mark.slow)]
+
+
+@pytest.mark.parametrize("crops", CROPS)
 @pytest.mark.parametrize(("score", "nms"), CONFIGS)
-def test_core_photos(request, score, nms):
+def test_core_photos(request, score, nms, crops):
     run_cocotb(
         "fastnms_core",
         "core_tb",
@@ -46,6 +53,6 @@ def test_core_photos(request, score, nms):
         env={
             "TB_IDLE": "0.05",
             "TB_STALL": "0.2",
-            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])),
+            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:crops]),
         },
     )

@@ -24,9 +24,11 @@ def test_detector_generated(request, score, idle, stall):
     )
 
 
+@pytest.mark.parametrize("crops", [3, pytest.param(6, marks=pytest.mark.slow)])
 @pytest.mark.parametrize("score", ["opencv", "sad"])
-def test_detector_photos(request, score):
-    cases = testimages.photo_crops([10, 20, 50])
+def test_detector_photos(request, score, crops):
+    """The three smallest photograph crops in `make test`, all six in `make test-full`."""
+    cases = testimages.photo_crops([10, 20, 50])[:crops]
     run_cocotb(
         "fastnms_fast_detector",
         "detector_tb",
