@@ -129,7 +129,7 @@ def build_key(generics: dict[str, object]) -> str:
     for name in sorted(generics):
         h.update(f"{name}={generics[name]}\n".encode())
     for path in [*rtl_sources(), HARNESS, REGS_HEADER]:
-        h.update(path.relative_to(REPO).as_posix().encode())
+        h.update(path.name.encode())
         h.update(path.read_bytes())
     for tool in (["ghdl", "--version"], ["verilator", "--version"], ["g++", "--version"]):
         h.update(_tool_version(tool).encode())
@@ -187,6 +187,10 @@ def build(
             cmd += [str(netlist), str(HARNESS), "-o", str(exe)]
             _run_logged(cmd, log)
         shutil.rmtree(work, ignore_errors=True)
+        # Builds of the same generics from older sources are of no more use.
+        for old in where.parent.glob(where.name.rsplit("-", 1)[0] + "-*"):
+            if old != where and len(old.name) == len(where.name):
+                shutil.rmtree(old, ignore_errors=True)
         return exe, time.perf_counter() - start
 
 

@@ -139,3 +139,19 @@ def test_every_photograph_through_the_top(score: str, nms: str, seed):
     ]
     assert frames
     assert_golden(run_rtl(frames, score, nms), frames, score, nms, seed)
+
+
+def test_build_key_follows_the_sources(tmp_path, monkeypatch):
+    """The fast engine's cache key changes with any RTL file's content and with the
+    generics, and with nothing else of the call: a changed RTL file means a new build."""
+    from fastnms.sim import verilator
+
+    generics = {"MAX_WIDTH": 64, "MAX_HEIGHT": 32, "SCORE": "opencv", "NMS": "3x3"}
+    key = verilator.build_key(generics)
+    assert key == verilator.build_key(dict(reversed(generics.items())))
+    assert key != verilator.build_key({**generics, "NMS": "none"})
+    sources = verilator.rtl_sources()
+    edited = tmp_path / sources[-1].name
+    edited.write_text(sources[-1].read_text() + "-- an edit\n")
+    monkeypatch.setattr(verilator, "rtl_sources", lambda: [*sources[:-1], edited])
+    assert verilator.build_key(generics) != key
