@@ -1,11 +1,14 @@
-"""Simulation driver of the AXI top `fastnms_axi`, behind `fastnms sim` and `make bench`.
+"""Simulation of the AXI top `fastnms_axi`, behind `fastnms sim`, `make demo` and `make bench`.
 
 - `sources`: the RTL files in compile order (shared with the testbenches and the flows);
-- `run`: builds the top under GHDL and runs one image through it (`run_rtl`);
-- `driver`: the cocotb side: drives the top's AXI4-Stream and AXI4-Lite ports with
-  cocotbext-axi and decodes the corner records;
-- `frame_tb`: the cocotb module that `run` starts in the simulator;
+- `run`: runs frames through the top with either engine (`run_rtl`);
+- `verilator` (+ verilator_harness.cpp): the fast engine, GHDL's netlist under Verilator;
+- `frame_tb`: the cocotb engine's module, started in GHDL by `run`;
+- `timing`: the seeded idle and stall patterns both engines draw;
+- `ghdl`: GHDL build and cocotb run (shared with the testbenches);
+- `driver`: cocotbext-axi drivers of the top's ports and record decoding;
 - `regs`: the register map and record format (generated from rtl/top/fastnms_regs.toml).
 
-It needs the source tree (rtl/) and GHDL; it imports nothing from the testbenches (tb/).
+It needs the source tree (rtl/), GHDL, and Verilator with g++ for the fast engine; it
+imports nothing from the testbenches (tb/) or the flows.
 """

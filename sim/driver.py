@@ -3,10 +3,9 @@ cocotbext-axi (AxiStreamSource for the video, AxiStreamSink for the corner
 records and the score video, AxiLiteMaster for the registers), counts clocks,
 and decodes the corner records.
 
-Used by the cocotb module behind `fastnms sim` (sim/frame_tb.py), by the bench
-flow (flows/bench/bench_tb.py) and, with the checks added, by the testbench of
-the top (tb/top/axi_tb.py). It runs inside the simulator and knows nothing of
-the tests.
+Used by the testbench of the top (tb/top/axi_tb.py), which adds the checks;
+the cocotb engine (sim/frame_tb.py) takes its clock period and video packets.
+It runs inside the simulator and knows nothing of the tests.
 """
 
 from __future__ import annotations
