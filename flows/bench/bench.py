@@ -1,8 +1,10 @@
 """`make bench`: measured throughput, latency and simulation speed of the AXI
-top (fastnms_axi under GHDL + cocotb, flows/bench/bench_tb.py), the region NMS's
-memory against the paper's formula, and the golden model's and OpenCV's time
-per frame on this machine. Writes build/bench/summary.json and the bench
-section of docs/results.md (flows/report/report.py).
+top (fastnms_axi) in every score x NMS configuration on the fast simulation
+engine (GHDL's netlist compiled by Verilator, through fastnms.sim.run.run_rtl),
+the cocotb engine's speed on a short run beside it, the region NMS's memory
+against the paper's formula, and the golden model's and OpenCV's time per
+frame on this machine. Writes build/bench/summary.json and the bench section of
+docs/results.md (flows/report/report.py).
 
     python -m flows.bench.bench [--width 1920 --height 1080 --frames 3 --jobs 2 ...]
 
@@ -10,7 +12,11 @@ Frames: the largest real photographs (fastnms.testing.images: ../shared/images i
 present, else scikit-image's bundled ones), each scaled to cover the frame
 with cv2.resize and cropped at its centre; sent back to back with no input
 idles and no output back-pressure, every frame's records compared with the
-golden model.
+golden model (a difference stops the bench).
+
+Order: the software timings, the fast engine's builds (--jobs at a time), then
+the simulations one at a time and the cocotb run, so that every timed run has
+the machine to itself.
 """
 
 from __future__ import annotations
@@ -19,14 +25,19 @@ import argparse
 import json
 import os
 import platform
-import tempfile
+import subprocess
+import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import cv2
 import numpy as np
-from fastnms.sim.ghdl import BUILD, build_and_run, ghdl_version
+from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.sim import regs, verilator
+from fastnms.sim.ghdl import ghdl_version
+from fastnms.sim.run import SimError, SimResult, generics_for, run_rtl
 from fastnms.sim.sources import REPO
 from fastnms.testing import images as testimages
 
@@ -34,12 +45,27 @@ from flows.bench import software
 from flows.report import report
 
 BENCH_BUILD = REPO / "build" / "bench"
-CONFIGS = [("opencv", "3x3"), ("sad", "region4"), ("opencv", "region8")]
+CONFIGS = [(score, nms) for score in SCORES for nms in NMS_MODES]
+# The software timings and the memory tables keep the configurations they had
+# when the bench simulated only three; region4 and region8 size their memories
+# alike, so one table per score width is enough.
+SOFTWARE_CONFIGS = [("opencv", "3x3"), ("sad", "region4"), ("opencv", "region8")]
+MEMORY_CONFIGS = [("sad", "region4"), ("opencv", "region8")]
+# The cocotb engine simulates a few thousand pixels per second: it is timed on a
+# band of the first frame, with the hardware and line length of the fast runs.
+COCOTB_CONFIG = ("opencv", "3x3")
+COCOTB_ROWS = 64
 SCORE_BITS = {"opencv": 8, "sad": 12}
 WIDTH, HEIGHT = 1920, 1080
 FRAMES = 3
 THRESHOLD = 20
 EVENT_DEPTH = 512  # fastnms_nms_region's default
+STATUS_ERRORS = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
+
+
+class BenchError(Exception):
+    """A result the bench must not publish: records unlike the golden model's,
+    STATUS errors, or two engines that disagree."""
 
 
 # ---- frames ----------------------------------------------------------------------
@@ -147,7 +173,7 @@ def software_times(frame: np.ndarray, threshold: int) -> list[dict]:
     from fastnms.golden.model import detect
 
     rows = []
-    for score, nms in CONFIGS:
+    for score, nms in SOFTWARE_CONFIGS:
         ms, rec = software.best_ms(lambda s=score, n=nms: detect(frame, threshold, s, n))
         rows.append(
             {
@@ -177,68 +203,108 @@ def software_times(frame: np.ndarray, threshold: int) -> list[dict]:
 # ---- simulation ------------------------------------------------------------------
 
 
+def bench_generics(score: str, nms: str, max_width: int, max_height: int) -> dict[str, object]:
+    return {**generics_for(score, nms), "MAX_WIDTH": max_width, "MAX_HEIGHT": max_height}
+
+
+def build_engines(
+    generics: list[dict[str, object]], jobs: int, announce: Callable[[str], None] | None = None
+) -> list[float | None]:
+    """Build the fast engine for every generic set, `jobs` at a time (each build
+    runs GHDL, Verilator and g++ in subprocesses, so threads are enough); each
+    one's build seconds, None when it was already built."""
+    try:
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            return list(pool.map(lambda g: verilator.build(g, announce)[1], generics))
+    except verilator.EngineError as e:
+        raise BenchError(str(e)) from None
+
+
+def status_errors(status: int | None) -> list[str]:
+    """The names of the STATUS error bits that are set."""
+    if status is None:
+        return []
+    return [n for n in STATUS_ERRORS if getattr(regs, f"STATUS_{n}").get(status)]
+
+
+def check_golden(
+    what: str, images: list[np.ndarray], result: SimResult, score: str, nms: str
+) -> None:
+    """Raise BenchError unless every frame's records equal the golden model's."""
+    for i, (img, frame) in enumerate(zip(images, result.frames, strict=True)):
+        want = np.asarray(detect(img, frame.threshold, score, nms)).reshape(-1, 3)
+        got = frame.records
+        if np.array_equal(got, want):
+            continue
+        n = min(len(got), len(want))
+        at = next((j for j in range(n) if not np.array_equal(got[j], want[j])), n)
+        raise BenchError(
+            f"{what}, frame {i}: the RTL gave {len(got)} records, the golden model "
+            f"{len(want)}; first difference at record {at}: RTL {_record(got, at)}, "
+            f"golden {_record(want, at)}"
+        )
+
+
+def _record(records: np.ndarray, i: int) -> str:
+    return str(tuple(int(v) for v in records[i])) if i < len(records) else "none"
+
+
 def simulate(
     score: str,
     nms: str,
-    frames_file: Path,
-    count: int,
+    images: list[np.ndarray],
     threshold: int,
-    max_width: int,
-    max_height: int,
+    generics: dict[str, object],
     check: bool = True,
+    build_seconds: float | None = None,
 ) -> dict:
-    """Run flows/bench/bench_tb.py on fastnms_axi; return its raw figures plus the
-    derived ones (clocks per pixel, latencies, pixels per wall second)."""
-    generics = {"MAX_WIDTH": max_width, "MAX_HEIGHT": max_height, "SCORE": score, "NMS": nms}
-    name = f"bench-{score}-{nms}"
-    log = frames_file.parent / f"{name}-{max_width}x{max_height}.log"
-    with tempfile.TemporaryDirectory(dir=frames_file.parent) as tmp:
-        out = Path(tmp) / "bench.json"
-        start = time.perf_counter()
-        run_bench(
-            generics,
-            name,
-            log,
-            {
-                "BENCH_FRAMES": str(frames_file),
-                "BENCH_COUNT": str(count),
-                "BENCH_THRESHOLD": str(threshold),
-                "BENCH_CHECK": "1" if check else "0",
-                "BENCH_OUT": str(out),
-            },
+    """The frames back to back through fastnms_axi on the fast engine; its raw
+    figures plus the derived ones (clocks per pixel, latencies, speed)."""
+    what = f"{score} + {nms}"
+    start = time.perf_counter()
+    try:
+        result = run_rtl([(img, threshold) for img in images], score, nms, generics=generics)
+    except SimError as e:
+        raise BenchError(f"{what}: {e}") from None
+    run_seconds = time.perf_counter() - start
+    errors = status_errors(result.status)
+    if errors:
+        raise BenchError(f"{what}: STATUS reports {', '.join(errors)} after the frames")
+    if result.extra.get("frame_count") != len(images):
+        raise BenchError(
+            f"{what}: FRAME_COUNT is {result.extra.get('frame_count')}, not {len(images)}"
         )
-        run_seconds = time.perf_counter() - start
-        raw = json.loads(out.read_text())
-    return derive(raw, score, nms, generics, run_seconds)
+    if check:
+        check_golden(what, images, result, score, nms)
+    fr = result.frames
+    raw = {
+        "engine": result.engine,
+        "frames": len(fr),
+        "width": fr[0].width,
+        "height": fr[0].height,
+        "threshold": threshold,
+        "first_pixel": [f.first_pixel for f in fr],
+        "last_pixel": [f.last_pixel for f in fr],
+        "last_record": [f.last_record for f in fr],
+        "cycles": result.cycles,
+        "input_stalls": result.input_stalls,
+        "frame_input_stalls": [f.input_stalls for f in fr],
+        "corners": [len(f.records) for f in fr],
+        "checked": check,
+        "status": result.status,
+        "errors": errors,
+        # The simulation alone: run_rtl's wall time without the build.
+        "wall_seconds": result.wall_seconds,
+        "build_seconds": build_seconds if result.build_seconds is None else result.build_seconds,
+        # The whole run_rtl call: the simulation plus the engine's set-up and the decoding.
+        "run_seconds": run_seconds,
+    }
+    return derive(raw, score, nms, generics, time.perf_counter() - start - run_seconds)
 
 
-def run_bench(generics: dict, name: str, log: Path, env: dict[str, str]) -> None:
-    """flows/bench/bench_tb.py on fastnms_axi, in the tests' build directory
-    (tb/harness.py names it the same way), with two differences from the tests:
-    GHDL's numeric_std warnings are off for the whole run (the first rows of
-    every line buffer are uninitialised RAM: hundreds of thousands of metavalue
-    warnings at 1920 pixels, which cost wall time), and the simulator's output
-    goes to `log`."""
-    key = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
-    build_dir = BUILD / f"fastnms_axi-{key}"
-    tests, failed = build_and_run(
-        "fastnms_axi",
-        "flows.bench.bench_tb",
-        generics,
-        build_dir=build_dir,
-        test_dir=build_dir / name,
-        plusargs=["--ieee-asserts=disable"],
-        extra_env={"BENCH_GENERICS": repr(generics), **env},
-        seed=1,  # the bench has no random idles or stalls
-        log_file=log,
-    )
-    if tests == 0 or failed:
-        raise RuntimeError(f"{name}: the bench failed, see {log}")
-
-
-def derive(raw: dict, score: str, nms: str, generics: dict, run_seconds: float) -> dict:
+def derive(raw: dict, score: str, nms: str, generics: dict, check_seconds: float) -> dict:
     n, pixels = raw["frames"], raw["width"] * raw["height"]
-    first, last_in, last_out = raw["first_pixel"], raw["last_pixel"], raw["last_record"]
+    first, last_in, last_out = raw["first_pixel"][0], raw["last_pixel"], raw["last_record"]
     intervals = [b - a for a, b in zip(last_out, last_out[1:], strict=False)]
     return {
         "config": f"{score}-{nms}-{raw['width']}x{raw['height']}",
@@ -257,8 +323,112 @@ def derive(raw: dict, score: str, nms: str, generics: dict, run_seconds: float) 
         # From a frame's last pixel in to its last record out.
         "latency_clocks": [o - i for i, o in zip(last_in, last_out, strict=True)],
         "sim_pixels_per_second": n * pixels / raw["wall_seconds"],
-        "run_seconds": run_seconds,
+        "sim_clocks_per_second": raw["cycles"] / raw["wall_seconds"],
+        "check_seconds": check_seconds,
     }
+
+
+def fast_engine_speed(sims: list[dict]) -> dict:
+    """The fast engine over all the bench's runs: pixels and clocks (first pixel
+    to last record) over the simulations' wall seconds."""
+    pixels = sum(s["frames"] * s["width"] * s["height"] for s in sims)
+    clocks = sum(s["cycles"] for s in sims)
+    seconds = sum(s["wall_seconds"] for s in sims)
+    frames = sum(s["frames"] for s in sims)
+    w, h = sims[0]["width"], sims[0]["height"]
+    return {
+        "engine": "verilator",
+        "measured_on": f"the runs above: {frames} frames of {w}x{h}",
+        "pixels": pixels,
+        "clocks": clocks,
+        "wall_seconds": seconds,
+        "pixels_per_second": pixels / seconds,
+        "clocks_per_second": clocks / seconds,
+        "pixels_per_second_range": [
+            min(s["sim_pixels_per_second"] for s in sims),
+            max(s["sim_pixels_per_second"] for s in sims),
+        ],
+    }
+
+
+def cocotb_speed(
+    frame: np.ndarray,
+    threshold: int,
+    generics: dict[str, object],
+    rows: int = COCOTB_ROWS,
+    score: str = COCOTB_CONFIG[0],
+    nms: str = COCOTB_CONFIG[1],
+) -> dict:
+    """Time the cocotb engine (GHDL + cocotb) on the middle `rows` lines of
+    `frame`, and run the same band on the fast engine: both must give the
+    golden model's records and the same clock counts."""
+    rows = min(rows, frame.shape[0])
+    y0 = (frame.shape[0] - rows) // 2
+    band = np.ascontiguousarray(frame[y0 : y0 + rows])
+    samples: list[tuple[float, int]] = []
+
+    def progress(pixels_in: int, pixels: int, seconds: float) -> None:
+        if 0 < pixels_in < pixels:
+            samples.append((seconds, pixels_in))
+
+    what = f"cocotb engine, {score} + {nms}"
+    start = time.perf_counter()
+    try:
+        slow = run_rtl(
+            [(band, threshold)], score, nms, engine="cocotb", generics=generics, progress=progress
+        )
+        call_seconds = time.perf_counter() - start
+        fast = run_rtl([(band, threshold)], score, nms, generics=generics)
+    except SimError as e:
+        raise BenchError(f"{what}: {e}") from None
+    check_golden(what, [band], slow, score, nms)
+    a, b = slow.frames[0], fast.frames[0]
+    # The engines count clocks from different origins: compare the spans.
+    clocks = [
+        (f.cycles, f.last_pixel - f.first_pixel, f.last_record - f.first_pixel, f.input_stalls)
+        for f in (a, b)
+    ]
+    if not np.array_equal(a.records, b.records) or clocks[0] != clocks[1]:
+        raise BenchError(
+            f"{what}: the engines disagree on the {band.shape[1]}x{rows} band: "
+            f"{len(a.records)} records and clocks {clocks[0]} (cocotb), "
+            f"{len(b.records)} records and clocks {clocks[1]} (fast engine)"
+        )
+    steady = None
+    if len(samples) >= 2 and samples[-1][0] > samples[0][0]:
+        (t0, p0), (t1, p1) = samples[0], samples[-1]
+        steady = (p1 - p0) / (t1 - t0)
+    pixels = band.size
+    return {
+        "engine": "cocotb",
+        "measured_on": (
+            f"{score} + {nms}, one {band.shape[1]}x{rows} frame (rows {y0} to {y0 + rows - 1} "
+            "of the first bench frame)"
+        ),
+        "score": score,
+        "nms": nms,
+        "width": band.shape[1],
+        "height": rows,
+        "first_row": y0,
+        "pixels": pixels,
+        "clocks": slow.cycles,
+        "wall_seconds": slow.wall_seconds,
+        "call_seconds": call_seconds,
+        "pixels_per_second": pixels / slow.wall_seconds,
+        "clocks_per_second": slow.cycles / slow.wall_seconds,
+        # From the run's progress reports while the pixels went in.
+        "steady_pixels_per_second": steady,
+        "corners": len(a.records),
+        "equal_to_fast_engine": True,
+    }
+
+
+def tool_version(command: list[str]) -> str:
+    try:
+        out = subprocess.run(command, capture_output=True, text=True, check=False).stdout
+    except OSError:
+        return "not installed"
+    return out.splitlines()[0].strip() if out else "unknown"
 
 
 def machine() -> dict:
@@ -284,61 +454,123 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--height", type=int, default=HEIGHT)
     ap.add_argument("--frames", type=int, default=FRAMES)
     ap.add_argument("--threshold", type=int, default=THRESHOLD)
-    ap.add_argument("--jobs", type=int, default=int(os.environ.get("JOBS", "2")))
+    ap.add_argument(
+        "--jobs",
+        type=int,
+        default=int(os.environ.get("JOBS", "2")),
+        help="fast-engine builds at a time",
+    )
     ap.add_argument("--configs", default=",".join(f"{s}-{n}" for s, n in CONFIGS))
+    ap.add_argument(
+        "--cocotb-rows",
+        type=int,
+        default=COCOTB_ROWS,
+        help="lines of the cocotb engine's timed band (0: no cocotb run)",
+    )
     ap.add_argument("--no-check", action="store_true", help="do not compare with the golden")
     ap.add_argument("--out", type=Path, default=BENCH_BUILD / "summary.json")
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
     args = ap.parse_args(argv)
-    args.out = args.out.resolve()  # the simulator runs in another folder
-    configs = [tuple(c.split("-", 1)) for c in args.configs.split(",")]
-
     start = time.perf_counter()
+    try:
+        summary = run(args)
+    except BenchError as e:
+        sys.exit(f"bench: FAILED: {e}")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(summary, indent=1) + "\n")
+    out = args.out.resolve()
+    print(f"bench: wrote {out.relative_to(REPO) if out.is_relative_to(REPO) else out}")
+    if not args.no_report:
+        path = report.update_bench(summary)
+        print(f"bench: rewrote the bench section of {path.relative_to(REPO)}")
+    print(f"bench: total wall time {report.minutes(time.perf_counter() - start)}")
+
+
+def run(args: argparse.Namespace) -> dict:
+    """Everything `make bench` measures, as the summary it writes."""
+    configs = [tuple(c.split("-", 1)) for c in args.configs.split(",")]
+    for score, nms in configs:
+        if score not in SCORES or nms not in NMS_MODES:
+            raise BenchError(f"unknown configuration {score}-{nms}")
+    missing = verilator.missing_tools()
+    if missing:
+        raise BenchError(f"the fast simulation engine needs {', '.join(missing)} (make setup)")
+    start = time.perf_counter()
+    phases: dict[str, float] = {}
     load = round(os.getloadavg()[0], 1)
     source = report.source_state()
-    args.out.parent.mkdir(parents=True, exist_ok=True)
     frames, sources = bench_frames(args.width, args.height, args.frames)
-    frames_file = args.out.parent / f"frames-{args.width}x{args.height}x{args.frames}.npy"
-    np.save(frames_file, frames)
+    images = list(frames)
     print(f"bench: {args.frames} frames {args.width}x{args.height} from {', '.join(sources)}")
 
     # The software timings first, alone on the machine.
+    t = time.perf_counter()
     software = software_times(frames[0], args.threshold)
     for row in software:
         print(f"bench: {row['what']:<40} {row['ms']:8.1f} ms  {row['corners']} corners")
+    phases["software"] = time.perf_counter() - t
 
+    t = time.perf_counter()
+    generics = [bench_generics(s, n, args.width, args.height) for s, n in configs]
+    print(
+        f"bench: building the fast engine for {len(configs)} configurations, {args.jobs} at a time"
+    )
+    builds = build_engines(generics, args.jobs)
+    for (score, nms), seconds in zip(configs, builds, strict=True):
+        print(
+            f"bench: {score}-{nms}: "
+            + ("cached" if seconds is None else f"built in {seconds:.1f} s")
+        )
+    phases["builds"] = time.perf_counter() - t
+
+    # One simulation at a time: each one's speed is the engine's on an idle core.
+    t = time.perf_counter()
     sims = []
-    with ProcessPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        futures = [
-            pool.submit(
-                simulate,
-                score,
-                nms,
-                frames_file,
-                args.frames,
-                args.threshold,
-                args.width,
-                args.height,
-                not args.no_check,
+    for (score, nms), gens, build in zip(configs, generics, builds, strict=True):
+        sim = simulate(score, nms, images, args.threshold, gens, not args.no_check, build)
+        sims.append(sim)
+        print(
+            f"bench: {sim['config']}: input {sim['input_clocks_per_pixel']:.5f} clocks/pixel, "
+            f"frame intervals {sim['frame_interval_clocks']} clocks, "
+            f"latency {sim['latency_clocks']} clocks, "
+            f"{sim['sim_pixels_per_second']:.0f} pixels/s simulated "
+            f"({sim['wall_seconds']:.1f} s of {sim['run_seconds']:.1f} s in run_rtl)"
+            + (
+                f", records equal to the golden model's ({sim['check_seconds']:.1f} s)"
+                if sim["checked"]
+                else ""
             )
-            for score, nms in configs
-        ]
-        for fut in futures:
-            sim = fut.result()
-            sims.append(sim)
-            print(
-                f"bench: {sim['config']}: input {sim['input_clocks_per_pixel']:.5f} clocks/pixel, "
-                f"frame intervals {sim['frame_interval_clocks']} clocks, "
-                f"latency {sim['latency_clocks']} clocks, "
-                f"{sim['sim_pixels_per_second']:.0f} pixels/s simulated"
-            )
+        )
+    phases["simulations"] = time.perf_counter() - t
+    engines = [fast_engine_speed(sims)]
+    print(
+        f"bench: fast engine {engines[0]['pixels_per_second']:.0f} pixels/s, "
+        f"{engines[0]['clocks_per_second']:.0f} clocks/s"
+    )
+
+    if args.cocotb_rows > 0:
+        t = time.perf_counter()
+        score, nms = COCOTB_CONFIG
+        print(f"bench: the cocotb engine on {args.cocotb_rows} lines of the first frame ...")
+        slow = cocotb_speed(
+            frames[0],
+            args.threshold,
+            bench_generics(score, nms, args.width, args.height),
+            args.cocotb_rows,
+        )
+        engines.append(slow)
+        phases["cocotb"] = time.perf_counter() - t
+        print(
+            f"bench: cocotb engine {slow['pixels_per_second']:.0f} pixels/s "
+            f"({slow['measured_on']}, {slow['wall_seconds']:.1f} s), records and clocks "
+            "equal to the fast engine's"
+        )
 
     memory = [
         {"config": f"{s}-{n}-{args.width}", **region_memory(args.width, args.height, SCORE_BITS[s])}
-        for s, n in configs
-        if n.startswith("region")
+        for s, n in MEMORY_CONFIGS
     ]
-    summary = {
+    return {
         "frames": {
             "count": args.frames,
             "width": args.width,
@@ -348,24 +580,20 @@ def main(argv: list[str] | None = None) -> None:
             "fit": "cv2.resize to cover, centre crop",
         },
         "simulation": sims,
+        "engines": engines,
         "region_memory": memory,
         "software": software,
         "machine": {
             **machine(),
             "ghdl": ghdl_version(),
-            "parallel_simulations": args.jobs,
+            "verilator": tool_version(["verilator", "--version"]),
+            "parallel_builds": args.jobs,
             "load_before": load,
         },
         "source": source,
+        "phases": phases,
         "wall_seconds": time.perf_counter() - start,
     }
-    args.out.write_text(json.dumps(summary, indent=1) + "\n")
-    print(
-        f"bench: wrote {args.out.relative_to(REPO) if args.out.is_relative_to(REPO) else args.out}"
-    )
-    if not args.no_report:
-        path = report.update_bench(summary)
-        print(f"bench: rewrote the bench section of {path.relative_to(REPO)}")
 
 
 if __name__ == "__main__":

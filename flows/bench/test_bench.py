@@ -1,28 +1,55 @@
-"""The bench flow kept working on a small configuration: flows/bench/bench_tb.py
-through the shared GHDL runner on two back-to-back 64x32 frames (about 20 s), its
-figures derived as `make bench` derives them."""
+"""The bench flow kept working on a small configuration: two back-to-back 64x32
+frames through the fast engine built for 64x32 (a build of about 15 s, then
+cached in build/vsim), their figures derived as `make bench` derives them, and a
+difference from the golden model failing the bench."""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from fastnms.testing import images as testimages
 
 from flows.bench import bench
 
+W, H = 64, 32
 
-def test_bench_simulates_back_to_back_frames(tmp_path):
+
+@pytest.fixture(scope="module")
+def frames() -> list[np.ndarray]:
     rng = np.random.default_rng(7)
-    frames = np.stack([testimages.blurred_noise(rng, 64, 32) for _ in range(2)])
-    frames_file = tmp_path / "frames.npy"
-    np.save(frames_file, frames)
-    row = bench.simulate("opencv", "3x3", frames_file, 2, 10, 64, 32)
-    assert row["frames"] == 2 and row["checked"] and row["errors"] == []
-    assert row["corners"][0] > 0  # the records were compared with the golden in the bench
-    # 3x3: the frames' last records exactly W x H clocks apart; the input taken
-    # at one pixel per clock but for a few stall clocks at the first frame's
-    # start (4, as at 1920x1080), all of them counted.
-    assert row["frame_interval_clocks"] == [64 * 32]
-    pixels_in = 2 * 64 * 32
+    return [testimages.blurred_noise(rng, W, H) for _ in range(2)]
+
+
+def simulate(frames: list[np.ndarray], nms: str = "3x3") -> dict:
+    return bench.simulate("opencv", nms, frames, 10, bench.bench_generics("opencv", nms, W, H))
+
+
+def test_bench_simulates_back_to_back_frames(frames):
+    row = simulate(frames)
+    assert row["engine"] == "verilator" and row["frames"] == 2
+    assert row["checked"] and row["errors"] == []
+    assert row["corners"][0] > 0  # the records were compared with the golden model
+    # 3x3: the frames' last records exactly W x H + 4 clocks apart: the registers
+    # are written for every frame, and the video gate holds a frame's first pixel
+    # for 4 clocks after a configuration write (docs/fastnms_axi.md), behind the
+    # input skid buffer: the input stalls, all of them within the input span.
+    assert row["frame_interval_clocks"] == [W * H + 4]
+    assert row["frame_input_stalls"] == [4, 4] and row["input_stalls"] == 8
+    pixels_in = 2 * W * H
     input_clocks = round(row["input_clocks_per_pixel"] * pixels_in)
-    assert input_clocks == pixels_in + row["input_stalls"] and row["input_stalls"] <= 4
+    assert input_clocks == pixels_in + row["input_stalls"]
+    assert row["first_pixel"][1] == row["last_pixel"][0] + 1  # back to back
     assert len(row["latency_clocks"]) == 2 and row["latency_clocks"][0] == row["latency_clocks"][1]
+    assert row["cycles"] == row["last_record"][1] - row["first_pixel"][0] + 1
+    assert row["sim_pixels_per_second"] > 0
+
+
+def test_bench_fails_on_a_golden_difference(frames, monkeypatch):
+    real = bench.detect
+
+    def one_corner_short(img, threshold, score, nms):
+        return real(img, threshold, score, nms)[:-1]
+
+    monkeypatch.setattr(bench, "detect", one_corner_short)
+    with pytest.raises(bench.BenchError, match="frame 0: the RTL gave"):
+        simulate(frames)

@@ -108,6 +108,10 @@ def check_report(summary, info, tmp_path):
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
     assert "| **total** |  | **170 851** |" in both
+    # The engines' speeds and the build times.
+    assert "| fast (GHDL netlist + Verilator) |" in both and "| cocotb (GHDL + cocotb) |" in both
+    assert "| 14 s |" in both and "| cached |" in both
+    assert "the cocotb run (207 times its speed while the pixels went in)" in both
     # Rewriting the synthesis section keeps the bench one.
     report.update_synth(summary, info, path)
     assert path.read_text() == both
@@ -128,20 +132,26 @@ def test_region_memory_breakdown():
 def fake_bench() -> dict:
     """A bench summary as flows/bench/bench.py writes it, without simulating."""
     raw = {
+        "engine": "verilator",
         "frames": 3,
         "width": 1920,
         "height": 1080,
         "threshold": 20,
-        "first_pixel": 10,
+        "first_pixel": [10, 2073610, 4147210],
         "last_pixel": [2073609, 4147209, 6220809],
         "last_record": [2081300, 4154900, 6228500],
+        "cycles": 6228491,
         "input_stalls": 0,
+        "frame_input_stalls": [0, 0, 0],
         "corners": [5000, 6000, 7000],
         "checked": True,
-        "wall_seconds": 600.0,
+        "status": 2,
         "errors": [],
+        "wall_seconds": 6.0,
+        "build_seconds": 14.0,
     }
     generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": "sad", "NMS": "region4"}
+    sim = bench_sim.derive(raw, "sad", "region4", generics, 0.5)
     return {
         "frames": {
             "count": 3,
@@ -151,13 +161,27 @@ def fake_bench() -> dict:
             "photographs": ["a.png"],
             "fit": "cv2.resize to cover, centre crop",
         },
-        "simulation": [bench_sim.derive(raw, "sad", "region4", generics, 700.0)],
+        "simulation": [sim, {**sim, "build_seconds": None}],
+        "engines": [
+            bench_sim.fast_engine_speed([sim]),
+            {
+                "engine": "cocotb",
+                "measured_on": "opencv + 3x3, one 1920x64 frame",
+                "pixels": 122880,
+                "clocks": 130594,
+                "wall_seconds": 30.0,
+                "pixels_per_second": 4096.0,
+                "clocks_per_second": 4353.1,
+                "steady_pixels_per_second": 5000.0,
+            },
+        ],
         "region_memory": [
             {"config": "sad-region4-1920", **bench_sim.region_memory(1920, 1080, 12)}
         ],
         "software": [{"what": "golden sad + region4", "ms": 200.0, "corners": 5000, "best_of": 3}],
-        "machine": {"cpu": "cpu", "cores": 2, "parallel_simulations": 2, "load_before": 0.5},
-        "wall_seconds": 1400.0,
+        "machine": {"cpu": "cpu", "cores": 2, "parallel_builds": 2, "load_before": 0.5},
+        "phases": {"software": 5.0, "builds": 60.0, "simulations": 60.0, "cocotb": 30.0},
+        "wall_seconds": 155.0,
     }
 
 
