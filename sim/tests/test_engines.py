@@ -155,3 +155,60 @@ def test_build_key_follows_the_sources(tmp_path, monkeypatch):
     edited.write_text(sources[-1].read_text() + "-- an edit\n")
     monkeypatch.setattr(verilator, "rtl_sources", lambda: [*sources[:-1], edited])
     assert verilator.build_key(generics) != key
+
+
+def checkerboard_image(period: int, width: int, height: int) -> np.ndarray:
+    yy, xx = np.mgrid[:height, :width]
+    return np.where((yy // period + xx // period) % 2, 200, 40).astype(np.uint8)
+
+
+def comb_image(pitch: int, width: int, height: int) -> np.ndarray:
+    """Bright teeth every `pitch` columns, joined by a bright band at the bottom:
+    regions that stay apart for most of the frame and merge at its end."""
+    img = np.full((height, width), 40, dtype=np.uint8)
+    img[:, ::pitch] = 200
+    img[height - 8 :, :] = 200
+    return img
+
+
+def hard_frames(rng: np.random.Generator, width: int, height: int) -> list:
+    """Content that makes the region NMS work hardest, at a given size."""
+    frames = [
+        (testimages.noise(rng, width, height), 0),
+        (testimages.blurred_noise(rng, width, height), 0),
+        (testimages.blurred_noise(rng, width, height), 5),
+    ]
+    frames += [(checkerboard_image(p, width, height), 20) for p in (1, 2, 3, 4)]
+    frames += [(comb_image(p, width, height), 20) for p in (2, 3, 4)]
+    return frames
+
+
+REGION_VARIANTS = [(s, n) for s, n in VARIANTS if n.startswith("region")]
+
+
+@pytest.mark.parametrize(
+    ("score", "nms"), REGION_VARIANTS, ids=[f"{s}-{n}" for s, n in REGION_VARIANTS]
+)
+def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
+    """The region NMS at full width (1920) on its hardest content, ten frames of
+    1920x40 back to back (noise at t = 0, blurred noise at t = 0 and 5,
+    checkerboards of periods 1 to 4, combs joined at the bottom): the golden
+    model's records. The input may stall on such content (issue 13); the
+    clocks per pixel are printed."""
+    frames = hard_frames(rng, 1920, 40)
+    result = run_rtl(frames, score, nms)
+    assert_golden(result, frames, score, nms, seed)
+    for (img, t), f in zip(frames, result.frames, strict=True):
+        assert f.cycles > img.size
+        print(f"t={t}: {len(f.records)} records, {f.cycles / img.size:.3f} clocks/pixel")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("score", "nms"), REGION_VARIANTS, ids=[f"{s}-{n}" for s, n in REGION_VARIANTS]
+)
+def test_region_nms_hard_content_full_hd(score: str, nms: str, rng, seed):
+    """The same content at 1920x1080, and blurred noise at t = 0..20."""
+    frames = hard_frames(rng, 1920, 1080)
+    frames += [(testimages.blurred_noise(rng, 1920, 1080), t) for t in (10, 15, 20)]
+    assert_golden(run_rtl(frames, score, nms), frames, score, nms, seed)
