@@ -21,6 +21,7 @@ import cv2
 import numpy as np
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
+from fastnms.sim import regs
 from fastnms.sim.run import (
     ENGINES,
     MAX_HEIGHT,
@@ -307,7 +308,7 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "--json",
         metavar="OUT.json",
         help="write width, height, threshold, score, nms, engine, timing, corners, cycles, "
-        "input_stalls, wall_seconds (and `frames` for several)",
+        "input_stalls, status_flags, wall_seconds (and `frames` for several)",
     )
     return p
 
@@ -518,6 +519,11 @@ def sim_summary(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, 
     return "\n".join(lines)
 
 
+def status_flags(status: int) -> list[str]:
+    """The names of the STATUS bits set in `status`."""
+    return [name for name, f in regs.REGISTERS["STATUS"].fields.items() if f.get(status)]
+
+
 def frames_csv_bytes(sim: SimResult) -> bytes:
     lines = ["frame,x,y,score"]
     for i, f in enumerate(sim.frames):
@@ -540,6 +546,9 @@ def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim
         "cycles": sim.cycles,
         "cycles_per_pixel": sim.cycles / pixels,
         "input_stalls": sim.input_stalls,
+        # STATUS after the last frame (fast engine): OVERFLOW says the corner
+        # output held the pipeline back; None with the cocotb engine.
+        "status_flags": None if sim.status is None else status_flags(sim.status),
         "wall_seconds": sim.wall_seconds,
     }
     if len(frames) > 1:

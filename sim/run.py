@@ -34,6 +34,8 @@ MAX_WIDTH = 1920
 MAX_HEIGHT = 1080
 MIN_SIZE = 7
 ENGINES = ("verilator", "cocotb")
+# The STATUS bits that flag malformed video.
+MALFORMED = ("EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY")
 
 
 class SimError(Exception):
@@ -162,6 +164,14 @@ def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) 
         raw = verilator.run(exe, frames, timing, report, power_up_seed)
     except verilator.EngineError as e:
         raise SimError(f"the fast engine stopped: {e}") from None
+    # The drivers send well-formed video: a malformed-frame flag or a frame
+    # count off by one is the IP's fault, never to be passed over.
+    flagged = [name for name in MALFORMED if getattr(regs, f"STATUS_{name}").get(raw.status)]
+    if flagged or raw.frame_count != len(frames):
+        raise SimError(
+            f"the IP flagged well-formed video ({', '.join(flagged) or 'no flag'}; "
+            f"FRAME_COUNT {raw.frame_count} after {len(frames)} frames)"
+        )
     return SimResult(
         frames=_frame_results(frames, raw.frames),
         cycles=raw.cycles,

@@ -50,6 +50,7 @@ def test_sim_writes_the_rtl_corners(photo: Path, tmp_path: Path, capsys, score: 
     assert summary["wall_seconds"] > 0
     assert cv2.imread(str(out_png)).shape == (48, 64, 3)
     assert summary["engine"] == "verilator" and summary["input_stalls"] >= 0
+    assert summary["status_flags"] == ["FRAME_DONE"]  # and no error flag
     line = capsys.readouterr().out
     assert f"{len(want)} corners; {summary['cycles']} cycles" in line
 
