@@ -77,7 +77,16 @@ def build_and_run(
     return get_results(Path(results))
 
 
+def tool_version(command: list[str]) -> str:
+    """The first line a tool prints for `command` (e.g. [tool, "--version"]), or "unknown"."""
+    try:
+        result = subprocess.run(command, capture_output=True, text=True)
+    except OSError:
+        return "unknown"
+    lines = (result.stdout or result.stderr).strip().splitlines()
+    return lines[0] if lines else "unknown"
+
+
 def ghdl_version() -> str:
     """The first line of `ghdl --version`, or "unknown"."""
-    out = subprocess.run(["ghdl", "--version"], capture_output=True, text=True).stdout
-    return out.splitlines()[0] if out else "unknown"
+    return tool_version(["ghdl", "--version"])

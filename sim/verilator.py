@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .ghdl import tool_version
 from .sources import REPO, RTL, rtl_sources
 from .timing import Timing
 
@@ -98,14 +99,6 @@ def synthesizable_sources(copy: Path) -> list[Path]:
     return [copy if f == TOP_FILE else f for f in rtl_sources()]
 
 
-def _tool_version(command: list[str]) -> str:
-    try:
-        out = subprocess.run(command, capture_output=True, text=True, check=False)
-    except OSError:
-        return ""
-    return (out.stdout or out.stderr).strip().splitlines()[0] if out.stdout or out.stderr else ""
-
-
 def missing_tools() -> list[str]:
     """The tools the engine needs and this machine lacks."""
     missing = [t for t in ("ghdl", "verilator", "make") if shutil.which(t) is None]
@@ -132,7 +125,7 @@ def build_key(generics: dict[str, object]) -> str:
         h.update(path.name.encode())
         h.update(path.read_bytes())
     for tool in (["ghdl", "--version"], ["verilator", "--version"], ["g++", "--version"]):
-        h.update(_tool_version(tool).encode())
+        h.update(tool_version(tool).encode())
     h.update(" ".join([*VERILATOR_FLAGS, CXXFLAGS]).encode())
     return h.hexdigest()[:16]
 

@@ -111,13 +111,13 @@ def constant(rng: np.random.Generator, width: int, height: int) -> np.ndarray:
 PATTERNS = [noise, blurred_noise, saturated, checkerboard, single_pixels, constant]
 
 
-def cover(img: np.ndarray, width: int, height: int) -> np.ndarray:
-    """`img` scaled to cover width x height (cv2.resize: area when shrinking, bicubic
-    when enlarging), then cropped at its centre."""
+def cover(img: np.ndarray, width: int, height: int, enlarge: int = cv2.INTER_CUBIC) -> np.ndarray:
+    """`img` scaled to cover width x height (cv2.resize: area when shrinking,
+    `enlarge` when enlarging), then cropped at its centre."""
     h, w = img.shape
     scale = max(width / w, height / h)
     size = (max(width, round(w * scale)), max(height, round(h * scale)))
-    interp = cv2.INTER_AREA if scale < 1 else cv2.INTER_CUBIC
+    interp = cv2.INTER_AREA if scale < 1 else enlarge
     big = cv2.resize(img, size, interpolation=interp)
     y0, x0 = (size[1] - height) // 2, (size[0] - width) // 2
     return np.ascontiguousarray(big[y0 : y0 + height, x0 : x0 + width])

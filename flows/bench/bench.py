@@ -25,7 +25,6 @@ import argparse
 import json
 import os
 import platform
-import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -36,7 +35,7 @@ import cv2
 import numpy as np
 from fastnms.golden.model import NMS_MODES, SCORES, detect
 from fastnms.sim import regs, verilator
-from fastnms.sim.ghdl import ghdl_version
+from fastnms.sim.ghdl import ghdl_version, tool_version
 from fastnms.sim.run import SimError, SimResult, generics_for, run_rtl
 from fastnms.sim.sources import REPO
 from fastnms.testing import images as testimages
@@ -80,25 +79,16 @@ def bench_images(count: int) -> list[Path]:
     return [p for _, _, p in sorted(sized)[:count]]
 
 
-def fit(img: np.ndarray, width: int, height: int) -> np.ndarray:
-    """Scale `img` to cover width x height (cv2.resize, area when shrinking,
-    bilinear when enlarging), then crop the centre."""
-    h, w = img.shape
-    scale = max(width / w, height / h)
-    size = (max(width, round(w * scale)), max(height, round(h * scale)))
-    interp = cv2.INTER_AREA if scale < 1 else cv2.INTER_LINEAR
-    big = cv2.resize(img, size, interpolation=interp)
-    y0, x0 = (size[1] - height) // 2, (size[0] - width) // 2
-    return np.ascontiguousarray(big[y0 : y0 + height, x0 : x0 + width])
-
-
 def bench_frames(width: int, height: int, count: int) -> tuple[np.ndarray, list[str]]:
     """`count` frames (count x height x width, uint8) and the names of their photographs."""
     from fastnms.golden.image import load_grey
 
     paths = bench_images(count)
     paths = (paths * count)[:count]  # fewer photographs than frames: repeat them
-    frames = np.stack([fit(load_grey(p), width, height) for p in paths])
+    # Bilinear when enlarging, as the bench has always scaled its frames.
+    frames = np.stack(
+        [testimages.cover(load_grey(p), width, height, cv2.INTER_LINEAR) for p in paths]
+    )
     return frames, [p.name for p in paths]
 
 
@@ -421,14 +411,6 @@ def cocotb_speed(
         "corners": len(a.records),
         "equal_to_fast_engine": True,
     }
-
-
-def tool_version(command: list[str]) -> str:
-    try:
-        out = subprocess.run(command, capture_output=True, text=True, check=False).stdout
-    except OSError:
-        return "not installed"
-    return out.splitlines()[0].strip() if out else "unknown"
 
 
 def machine() -> dict:
