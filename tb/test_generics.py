@@ -22,14 +22,7 @@ ILLEGAL = {
     "fastnms_fast_detector": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     "fastnms_nms_3x3": ({"MAX_HEIGHT": 2}, "MAX_WIDTH and MAX_HEIGHT must be in 3 .. 65535"),
     "fastnms_nms_none": ({"MAX_HEIGHT": 70000}, "MAX_WIDTH must be in 2 .. 65535"),
-    "fastnms_nms_region_scan": ({"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
-    # (a LABEL_BITS other than clog2(LABELS) fails at elaboration already:
-    # the RAM ports do not match)
-    "fastnms_nms_region_table": ({"LABELS": 2, "LABEL_BITS": 1}, "LABELS must be at least 3"),
-    "fastnms_nms_region": (
-        {"MAX_WIDTH": 32, "LABELS": 18},
-        "LABELS must be at least MAX_WIDTH / 2 + 3",
-    ),
+    "fastnms_nms_region": ({"MAX_WIDTH": 2}, "MAX_WIDTH must be at least 3"),
     "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
     "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
     "fastnms_corner_pack": ({"X_BITS": 30, "Y_BITS": 30}, "X_BITS + Y_BITS + SCORE_BITS + 2"),
@@ -47,7 +40,7 @@ MORE = [
     ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
     ("fastnms_nms_region", {"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
-    ("fastnms_nms_region", {"EVENT_DEPTH": 70000}, "EVENT_DEPTH must be at most 65536"),
+    ("fastnms_fifo", {"STYLE": "ultra"}, "STYLE must be"),
     ("fastnms_axi", {"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_window", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
 ]

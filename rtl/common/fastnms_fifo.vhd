@@ -41,7 +41,9 @@ library work;
 entity fastnms_fifo is
   generic (
     DEPTH : positive := 512;
-    WIDTH : positive := 36
+    WIDTH : positive := 36;
+    -- ram_style of the RAM (see fastnms_ram_sdp): "distributed" for a few words.
+    STYLE : string   := "block"
   );
   port (
     clk       : in    std_logic;
@@ -153,7 +155,7 @@ begin
       DEPTH        => WORDS,
       WIDTH        => WIDTH,
       READ_LATENCY => 1,
-      STYLE        => "block"
+      STYLE        => STYLE
     )
     port map (
       clk     => clk,

@@ -1,22 +1,25 @@
 -- Region NMS (the paper's streaming NMS): one record per 4- or 8-connected
 -- region of corner pixels, its maximum score, a tie going to the region's
--- first pixel in raster order.
+-- first pixel in raster order. One pixel per clock whatever the content.
 --
--- fastnms_nms_region_scan follows the raster at one pixel per clock with the
--- label line and turns it into events (a run starts, two regions touch, a run
--- ends, a run of the row above is left behind); an event queue carries them
--- to fastnms_nms_region_table, which keeps the regions, merges them and emits
--- a region's record when it closes. Records leave in the order regions close,
--- not in raster order; the end-of-frame beat (out_eof = '1', x = y = all ones,
--- score 0) follows the frame's last record, also for a frame without corners.
+-- The algorithm is golden/region_stream.py, step for step; the design, its
+-- invariants and the clock schedule are in docs/fastnms_nms_region.md. In
+-- short: the classes of one row's runs never cross, so the previous row's open
+-- classes nest and live on a stack; a link table (slot = start column / 2)
+-- chains each class's runs along a row, a data table holds each class's best
+-- key at its first run's slot, and every column changes only the stack's top
+-- two entries, the current run's class and one word of each table.
+--
+-- Clocks: the current row steps one column per accepted pixel; rows >= 1 step
+-- the previous row's reader with it. After a frame's last pixel the reader
+-- flushes that row alone, one column per clock, while the next frame's first
+-- row (which has no previous row) comes in; then the end-of-frame beat.
+-- in_ready drops only when the record FIFO has no room, and, for a frame
+-- narrower than the one before it, until that frame's flush is over.
 --
 -- The input is the detector's per-pixel stream: well formed (every line
--- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof,
--- the next pixel the next frame's first). The scan knows where a frame
--- starts from that; in_sof is only checked, in simulation (an assertion of
--- severity error when it disagrees).
--- When the table falls behind (dense corners, long merges) the queue fills
--- and in_ready drops: nothing is dropped.
+-- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof, the
+-- next pixel the next frame's first); in_sof is only checked, in simulation.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -29,11 +32,7 @@ entity fastnms_nms_region is
     MAX_WIDTH    : positive := 1920;
     MAX_HEIGHT   : positive := 4095;
     SCORE_BITS   : positive := 8;
-    CONNECTIVITY : positive := 8;
-    -- Labels (and regions) in the tables, label 0 meaning none. At least
-    -- MAX_WIDTH / 2 + 3 (the default): see the assertion below.
-    LABELS      : positive := MAX_WIDTH / 2 + 3;
-    EVENT_DEPTH : positive := 512
+    CONNECTIVITY : positive := 8
   );
   port (
     clk       : in    std_logic;
@@ -57,174 +56,795 @@ end entity fastnms_nms_region;
 
 architecture rtl of fastnms_nms_region is
 
-  constant LABEL_BITS : positive := clog2(LABELS);
-  constant RUN_BITS   : positive := bits_for(MAX_WIDTH / 2 + 1);
-  constant X_BITS     : positive := clog2(MAX_WIDTH);
-  constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
-  -- Event beat: flags, three labels, the run's best pixel.
-  constant EV_BITS : positive := 6 + 3 * LABEL_BITS + SCORE_BITS + X_BITS + Y_BITS;
+  constant XB : positive := clog2(MAX_WIDTH);
+  constant YB : positive := bits_for(MAX_HEIGHT);
+  constant WB : positive := bits_for(MAX_WIDTH);
+  -- Key: score, then the inverted row and column, so that the larger key is
+  -- the better pixel (higher score, then earlier in raster order).
+  constant KB : positive := SCORE_BITS + YB + XB;
+  -- Slots: one per two columns (two runs of a row start at least two apart).
+  -- SB holds every slot and NONE, which is none of them.
+  constant SLOTS       : positive := (MAX_WIDTH + 1) / 2;
+  constant SB          : positive := bits_for(SLOTS);
+  constant NONE        : unsigned(SB - 1 downto 0) := (others => '1');
+  -- Open classes of the previous row at once (golden/region_stream.py,
+  -- stack_depth): the top two are registers, the others in a RAM.
+  constant STACK_DEPTH : positive := (MAX_WIDTH + 1) / 4 + 1;
+  constant STACK_WORDS : positive := maximum(STACK_DEPTH - 2, 1);
+  constant DB          : positive := bits_for(STACK_DEPTH);
+  constant ENTRY_BITS  : positive := 3 * SB + 1 + KB;
+  constant OUT_BITS    : positive := 1 + XB + YB + SCORE_BITS;
 
-  subtype label_t is unsigned(LABEL_BITS - 1 downto 0);
+  subtype slot_t is unsigned(SB - 1 downto 0);
+  subtype key_t is unsigned(KB - 1 downto 0);
 
-  signal spare_valid : std_logic;
-  signal spare_label : label_t;
-  signal spare_take  : std_logic;
+  -- A previous-row class on the stack.
+  type entry_t is record
+    target : slot_t;    -- slot of its next run in the previous row, NONE after the last
+    head   : slot_t;    -- slot of its first run in the current row, NONE if none yet
+    tail   : slot_t;    -- slot of its latest run in the current row
+    merged : std_logic; -- also holds the class of the entry below
+    key    : key_t;     -- best pixel (valid unless merged into the entry above)
+  end record entry_t;
 
-  -- Scan side of the event queue (s_*) and table side (t_*).
-  signal s_valid       : std_logic;
-  signal s_room        : std_logic;
-  signal s_new         : std_logic;
-  signal s_union       : std_logic;
-  signal s_union_label : label_t;
-  signal s_end         : std_logic;
-  signal s_credit      : std_logic;
-  signal s_pass        : std_logic;
-  signal s_pass_label  : label_t;
-  signal s_label       : label_t;
-  signal s_score       : unsigned(SCORE_BITS - 1 downto 0);
-  signal s_x           : unsigned(X_BITS - 1 downto 0);
-  signal s_y           : unsigned(Y_BITS - 1 downto 0);
-  signal s_eof         : std_logic;
-  signal s_data        : std_logic_vector(EV_BITS - 1 downto 0);
-  signal t_valid       : std_logic;
-  signal t_ready       : std_logic;
-  signal t_data        : std_logic_vector(EV_BITS - 1 downto 0);
+  function pack (e : entry_t) return std_logic_vector is
+  begin
+
+    return std_logic_vector(e.target) & std_logic_vector(e.head) &
+           std_logic_vector(e.tail) & e.merged & std_logic_vector(e.key);
+
+  end function pack;
+
+  function unpack (v : std_logic_vector(ENTRY_BITS - 1 downto 0)) return entry_t is
+    variable e : entry_t;
+  begin
+
+    e.target := unsigned(v(ENTRY_BITS - 1 downto ENTRY_BITS - SB));
+    e.head   := unsigned(v(ENTRY_BITS - SB - 1 downto ENTRY_BITS - 2 * SB));
+    e.tail   := unsigned(v(ENTRY_BITS - 2 * SB - 1 downto KB + 1));
+    e.merged := v(KB);
+    e.key    := unsigned(v(KB - 1 downto 0));
+    return e;
+
+  end function unpack;
+
+  function best (a : key_t; b : key_t) return key_t is
+  begin
+
+    if a >= b then
+      return a;
+    end if;
+    return b;
+
+  end function best;
+
+  function slot_of (x : unsigned) return slot_t is
+  begin
+
+    return resize(x(x'high downto 1), SB);
+
+  end function slot_of;
+
+  -- A table write request: the step's first and, at the end of a row, second.
+  type write_t is record
+    en   : std_logic;
+    addr : slot_t;
+    data : std_logic_vector(KB - 1 downto 0);
+  end record write_t;
+
+  constant NO_WRITE : write_t := (en => '0', addr => (others => '0'), data => (others => '0'));
+
+  -- Input, through a skid buffer (registered in_ready).
+  signal px_valid  : std_logic;
+  signal px_ready  : std_logic;
+  signal px_data   : std_logic_vector(WB + SCORE_BITS + 3 downto 0);
+  signal px_width  : unsigned(WB - 1 downto 0);
+  signal px_corner : std_logic;
+  signal px_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal px_sof    : std_logic;
+  signal px_eol    : std_logic;
+  signal px_eof    : std_logic;
+
+  -- Current row.
+  signal cx          : unsigned(XB - 1 downto 0);
+  signal cy          : unsigned(YB - 1 downto 0);
+  signal cw          : unsigned(WB - 1 downto 0);
+  signal first_row   : std_logic;
+  signal frame_start : std_logic;
+  signal cm          : std_logic;
+  signal c_key       : key_t;
+  signal c_head      : slot_t;
+  signal c_tail      : slot_t;
+  signal attached    : std_logic;
+  signal active      : std_logic;
+
+  -- Reader of the previous row: its column, its row's last column, the
+  -- prefetched bits (pm at rcol - 1, p0 at rcol; the row memory's output is
+  -- the bit at rcol + 1, or at column 0 of the next row after the last) and
+  -- the row memory address it reads next, (rcol + 2) mod its width.
+  signal rcol          : unsigned(XB - 1 downto 0);
+  signal r_lastcol     : unsigned(XB - 1 downto 0);
+  signal r_ahead       : unsigned(XB - 1 downto 0);
+  signal pm            : std_logic;
+  signal p0            : std_logic;
+  signal flushing      : std_logic;
+  signal flush_pending : std_logic;
+  signal flush_w       : unsigned(WB - 1 downto 0);
+  signal primed        : std_logic;
+  signal prime_st      : unsigned(1 downto 0);
+  signal c_penult      : unsigned(XB - 1 downto 0);
+
+  -- Stack: top, second, and a copy of the RAM's word below them (refreshed
+  -- two clocks after a pop: third_rd1, third_rd2).
+  signal depth     : unsigned(DB - 1 downto 0);
+  signal top       : entry_t;
+  signal second    : entry_t;
+  signal third     : entry_t;
+  signal third_rd1 : std_logic;
+  signal third_rd2 : std_logic;
+
+  -- Memories. Read enables and addresses are this clock's steps; writes are
+  -- registered.
+  signal row_we      : std_logic;
+  signal row_wa      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_wd      : std_logic_vector(0 downto 0);
+  signal row_re      : std_logic;
+  signal row_ra      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_rd      : std_logic_vector(0 downto 0);
+  signal data_w      : write_t;
+  signal data_spare  : write_t;
+  signal slot_re     : std_logic;
+  signal slot_ra     : slot_t;
+  signal data_rd     : std_logic_vector(KB - 1 downto 0);
+  signal link_w      : write_t;
+  signal link_spare  : write_t;
+  signal link_rd     : std_logic_vector(SB - 1 downto 0);
+  -- The slot read last, and what was written to it since the read.
+  signal watch       : slot_t;
+  signal data_fwd_v  : std_logic;
+  signal data_fwd    : key_t;
+  signal link_fwd_v  : std_logic;
+  signal link_fwd    : slot_t;
+  signal cur_data    : key_t;
+  signal cur_link    : slot_t;
+  signal stack_we    : std_logic;
+  signal stack_wa    : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_wd    : std_logic_vector(ENTRY_BITS - 1 downto 0);
+  signal stack_re    : std_logic;
+  signal stack_ra    : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_rd    : std_logic_vector(ENTRY_BITS - 1 downto 0);
+
+  -- Records.
+  signal rec_valid   : std_logic;
+  signal rec_data    : std_logic_vector(OUT_BITS - 1 downto 0);
+  signal rec_room    : std_logic;
+  signal eof_pending : std_logic;
+  signal q_data      : std_logic_vector(OUT_BITS - 1 downto 0);
+
+  -- This clock's steps: the flush, the current row, both in lock-step (a row
+  -- >= 1), the reader (lock-step or flush), a first row's last two columns
+  -- priming the reader.
+  signal flush_go : std_logic;
+  signal cur_go   : std_logic;
+  signal cstep    : std_logic;
+  signal lock     : std_logic;
+  signal rstep    : std_logic;
+  signal r_last   : std_logic;
+  signal r_next   : unsigned(XB - 1 downto 0);
+  signal f_prime  : std_logic;
+  signal row_next0 : std_logic; -- this clock reads the next row's column 0
+  signal holds0    : std_logic; -- the row memory's output is that bit
 
 begin
 
-  -- LABELS: the scan takes a pixel only with a spare label ready. While
-  -- it decides a pixel, up to MAX_WIDTH / 2 + 1 labels hold runs of the label
-  -- line whose pass it has not yet sent (the row above from the pixel on,
-  -- the row so far: a 4-connected checkerboard holds that many distinct
-  -- labels at its second pixel of a row); with ids 1 .. LABELS - 1, one more
-  -- must remain for the spare. Labels already passed come back through the
-  -- table without the scan's help, so they only slow it down. With
-  -- MAX_WIDTH / 2 + 2 labels that checkerboard stalls in_ready forever.
-  assert LABELS >= MAX_WIDTH / 2 + 3
-    report "fastnms_nms_region: LABELS must be at least MAX_WIDTH / 2 + 3"
-    severity failure;
   assert CONNECTIVITY = 4 or CONNECTIVITY = 8
     report "fastnms_nms_region: CONNECTIVITY must be 4 or 8"
     severity failure;
-  assert EVENT_DEPTH <= 2 ** 16
-    report "fastnms_nms_region: EVENT_DEPTH must be at most 65536"
+  assert MAX_WIDTH >= 3
+    report "fastnms_nms_region: MAX_WIDTH must be at least 3"
     severity failure;
 
-  scan : entity work.fastnms_nms_region_scan
+  input : entity work.fastnms_skid_buffer
     generic map (
-      MAX_WIDTH    => MAX_WIDTH,
-      MAX_HEIGHT   => MAX_HEIGHT,
-      SCORE_BITS   => SCORE_BITS,
-      CONNECTIVITY => CONNECTIVITY,
-      LABEL_BITS   => LABEL_BITS
-    )
-    port map (
-      clk            => clk,
-      rst            => rst,
-      cfg_width      => cfg_width,
-      in_valid       => in_valid,
-      in_ready       => in_ready,
-      in_corner      => in_corner,
-      in_score       => in_score,
-      in_sof         => in_sof,
-      in_eol         => in_eol,
-      in_eof         => in_eof,
-      spare_valid    => spare_valid,
-      spare_label    => spare_label,
-      spare_take     => spare_take,
-      ev_valid       => s_valid,
-      ev_room        => s_room,
-      ev_new         => s_new,
-      ev_union       => s_union,
-      ev_union_label => s_union_label,
-      ev_end         => s_end,
-      ev_credit      => s_credit,
-      ev_pass        => s_pass,
-      ev_pass_label  => s_pass_label,
-      ev_label       => s_label,
-      ev_score       => s_score,
-      ev_x           => s_x,
-      ev_y           => s_y,
-      ev_eof         => s_eof
-    );
-
-  s_data <= s_new & s_union & s_end & s_credit & s_pass & s_eof &
-            std_logic_vector(s_union_label) & std_logic_vector(s_pass_label) &
-            std_logic_vector(s_label) & std_logic_vector(s_score) &
-            std_logic_vector(s_x) & std_logic_vector(s_y);
-
-  -- The queue's head leaves from flip-flops (fastnms_fifo's output skid
-  -- buffer) rather than from its block RAM: the table decides its first step
-  -- and its first read address from it. The scan pushes one clock after its
-  -- decision, so it looks at in_room2 (room for this clock's beat and the
-  -- next one), never at in_ready.
-  event_queue : entity work.fastnms_fifo
-    generic map (
-      DEPTH => EVENT_DEPTH,
-      WIDTH => EV_BITS
+      WIDTH => WB + SCORE_BITS + 4
     )
     port map (
       clk       => clk,
       rst       => rst,
-      in_valid  => s_valid,
-      in_ready  => open,
-      in_room2  => s_room,
-      in_data   => s_data,
-      out_valid => t_valid,
-      out_ready => t_ready,
-      out_data  => t_data,
-      busy      => open
+      in_valid  => in_valid,
+      in_ready  => in_ready,
+      in_data   => std_logic_vector(cfg_width) & in_corner & in_sof & in_eol & in_eof &
+                   std_logic_vector(in_score),
+      out_valid => px_valid,
+      out_ready => px_ready,
+      out_data  => px_data
     );
 
-  unpack : block is
+  -- cfg_width travels with each pixel: it must hold when a frame's first
+  -- pixel is accepted, which is before that pixel steps.
+  px_width  <= unsigned(px_data(WB + SCORE_BITS + 3 downto SCORE_BITS + 4));
+  px_corner <= px_data(SCORE_BITS + 3);
+  px_sof    <= px_data(SCORE_BITS + 2);
+  px_eol    <= px_data(SCORE_BITS + 1);
+  px_eof    <= px_data(SCORE_BITS);
+  px_score  <= unsigned(px_data(SCORE_BITS - 1 downto 0));
 
-    -- Field positions in the event beat, from the top.
-    constant F_UNION_LABEL : natural := EV_BITS - 7;
-    constant F_PASS_LABEL  : natural := F_UNION_LABEL - LABEL_BITS;
-    constant F_LABEL       : natural := F_PASS_LABEL - LABEL_BITS;
-    constant F_SCORE       : natural := F_LABEL - LABEL_BITS;
-    constant F_X           : natural := F_SCORE - SCORE_BITS;
-    constant F_Y           : natural := F_X - X_BITS;
+  -- The flush steps whenever the record FIFO has room. The current row steps
+  -- with room too; rows >= 1 need the reader free and primed; a first row
+  -- never overtakes the flush (its last column writes the slot of the next
+  -- column, which a wider flush still reads).
+  flush_go <= flushing and rec_room;
+
+  current_row_may_step : process (all) is
+  begin
+
+    if first_row = '1' then
+      if flush_pending = '1' then
+        cur_go <= '0';
+      elsif flushing = '0' then
+        cur_go <= rec_room;
+      elsif cx < rcol or (cx = rcol and (px_eol = '0' or r_last = '1')) then
+        cur_go <= rec_room;
+      else
+        cur_go <= '0';
+      end if;
+    else
+      cur_go <= rec_room and primed and not flushing and not flush_pending;
+    end if;
+
+  end process current_row_may_step;
+
+  px_ready <= cur_go;
+  -- The current pixel goes into the row memory in its own clock, so a read
+  -- two columns later (the next row's first columns) finds it there.
+  row_we    <= cstep;
+  row_wa    <= cx;
+  row_wd(0) <= px_corner;
+  cstep    <= cur_go and px_valid;
+  lock     <= cstep and not first_row;
+  rstep    <= lock or flush_go;
+  r_last   <= to_sl(r_ahead = 1);
+  r_next   <= (others => '0') when r_last = '1' else rcol + 1;
+  -- A first row reads the next row's first two columns in its last two (the
+  -- row memory then holds them); PRIME does the same when a flush held the
+  -- port then.
+  f_prime  <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
+
+  reads : process (all) is
+  begin
+
+    row_re    <= '0';
+    row_next0 <= '0';
+    row_ra    <= resize(r_ahead, row_ra'length);
+    slot_re <= '0';
+    slot_ra <= slot_of(r_next);
+    if rstep = '1' then
+      -- A flush does not read past its row.
+      row_re  <= lock or to_sl(r_ahead >= 2);
+      slot_re <= '1';
+    elsif f_prime = '1' or prime_st /= 0 then
+      row_re <= '1';
+      if (f_prime = '1' and px_eol = '0') or prime_st = 1 then
+        row_ra    <= (others => '0');
+        row_next0 <= '1';
+      else
+        row_ra <= to_unsigned(1, row_ra'length);
+        slot_re <= '1';
+        slot_ra <= (others => '0');
+      end if;
+    end if;
+    -- The same clock's first row step, when the flush's own read is over.
+    if rstep = '1' and lock = '0' and r_ahead < 2 and cstep = '1' and
+       first_row = '1' and (cx = c_penult or px_eol = '1') then
+      row_re <= '1';
+      if px_eol = '0' then
+        row_ra    <= (others => '0');
+        row_next0 <= '1';
+      else
+        row_ra <= to_unsigned(1, row_ra'length);
+      end if;
+    end if;
+
+  end process reads;
+
+  -- The slot read last, with writes to it since (or in the same clock) first.
+  forward : process (all) is
+  begin
+
+    if data_w.en = '1' and data_w.addr = watch then
+      cur_data <= unsigned(data_w.data);
+    elsif data_fwd_v = '1' then
+      cur_data <= data_fwd;
+    else
+      cur_data <= unsigned(data_rd);
+    end if;
+    if link_w.en = '1' and link_w.addr = watch then
+      cur_link <= unsigned(link_w.data(SB - 1 downto 0));
+    elsif link_fwd_v = '1' then
+      cur_link <= link_fwd;
+    else
+      cur_link <= unsigned(link_rd);
+    end if;
+
+  end process forward;
+
+  step : process (clk) is
+
+    variable v_top      : entry_t;
+    variable v_second   : entry_t;
+    variable v_third    : entry_t;
+    variable v_depth    : unsigned(DB - 1 downto 0);
+    variable v_key      : key_t;
+    variable v_head     : slot_t;
+    variable v_tail     : slot_t;
+    variable v_att      : std_logic;
+    variable v_act      : std_logic;
+    variable popped     : entry_t;
+    variable pushed     : boolean;
+    variable c0         : std_logic;
+    variable r_eol      : boolean;
+    variable c_eol      : boolean;
+    variable pix        : key_t;
+    variable dw1        : write_t;
+    variable dw2        : write_t;
+    variable lw1        : write_t;
+    variable lw2        : write_t;
+    variable emit       : boolean;
+    variable emit_key   : key_t;
+    variable touch      : boolean;
+    variable flush_ends : boolean;
+    variable eof_step   : boolean;
+
+    procedure add_write (variable w1 : inout write_t; variable w2 : inout write_t;
+                         addr : slot_t; data : unsigned) is
+    begin
+
+      if w1.en = '0' then
+        w1 := (en => '1', addr => addr, data => std_logic_vector(resize(data, KB)));
+      else
+        w2 := (en => '1', addr => addr, data => std_logic_vector(resize(data, KB)));
+      end if;
+
+    end procedure add_write;
 
   begin
 
-    regions : entity work.fastnms_nms_region_table
-      generic map (
-        LABELS     => LABELS,
-        LABEL_BITS => LABEL_BITS,
-        RUN_BITS   => RUN_BITS,
-        SCORE_BITS => SCORE_BITS,
-        X_BITS     => X_BITS,
-        Y_BITS     => Y_BITS
-      )
-      port map (
-        clk            => clk,
-        rst            => rst,
-        ev_valid       => t_valid,
-        ev_ready       => t_ready,
-        ev_new         => t_data(EV_BITS - 1),
-        ev_union       => t_data(EV_BITS - 2),
-        ev_end         => t_data(EV_BITS - 3),
-        ev_credit      => t_data(EV_BITS - 4),
-        ev_pass        => t_data(EV_BITS - 5),
-        ev_eof         => t_data(EV_BITS - 6),
-        ev_union_label => unsigned(t_data(F_UNION_LABEL downto F_UNION_LABEL - LABEL_BITS + 1)),
-        ev_pass_label  => unsigned(t_data(F_PASS_LABEL downto F_PASS_LABEL - LABEL_BITS + 1)),
-        ev_label       => unsigned(t_data(F_LABEL downto F_LABEL - LABEL_BITS + 1)),
-        ev_score       => unsigned(t_data(F_SCORE downto F_SCORE - SCORE_BITS + 1)),
-        ev_x           => unsigned(t_data(F_X downto F_X - X_BITS + 1)),
-        ev_y           => unsigned(t_data(F_Y downto F_Y - Y_BITS + 1)),
-        spare_valid    => spare_valid,
-        spare_label    => spare_label,
-        spare_take     => spare_take,
-        out_valid      => out_valid,
-        out_ready      => out_ready,
-        out_x          => out_x,
-        out_y          => out_y,
-        out_score      => out_score,
-        out_eof        => out_eof
-      );
+    if rising_edge(clk) then
+      v_top    := top;
+      v_second := second;
+      v_third  := third;
+      v_depth  := depth;
+      v_key    := c_key;
+      v_head   := c_head;
+      v_tail   := c_tail;
+      v_att    := attached;
+      v_act    := active;
+      dw1      := NO_WRITE;
+      dw2      := NO_WRITE;
+      lw1      := NO_WRITE;
+      lw2      := NO_WRITE;
+      emit     := false;
+      emit_key := (others => '0');
+      pushed   := false;
+      touch    := false;
 
-  end block unpack;
+      -- The stack RAM's word below the second entry, two clocks after a pop.
+      if third_rd2 = '1' then
+        v_third := unpack(stack_rd);
+      end if;
+      third_rd2 <= third_rd1;
+      third_rd1 <= '0';
+      stack_we  <= '0';
+      stack_re  <= '0';
+
+      c0    := px_corner;
+      r_eol := r_last = '1';
+      c_eol := px_eol = '1';
+      pix   := px_score & not cy & not cx;
+      assert not (lock = '1' and rcol /= cx)
+        report "fastnms_nms_region: reader and current row out of step"
+        severity failure;
+
+      -- 1. A previous-row run starts at rcol: continue the top's class, or push.
+      if rstep = '1' and p0 = '1' and pm = '0' then
+        if v_depth /= 0 and v_top.target = slot_of(rcol) then
+          v_top.target := cur_link;
+        else
+          if v_depth >= 2 then
+            stack_we  <= '1';
+            stack_wa  <= resize(v_depth - 2, stack_wa'length);
+            stack_wd  <= pack(v_second);
+            v_third   := v_second;
+            third_rd1 <= '0';
+            third_rd2 <= '0';
+          end if;
+          v_second := v_top;
+          v_top    := (target => cur_link, head => NONE, tail => NONE,
+                       merged => '0', key => cur_data);
+          v_depth  := v_depth + 1;
+          pushed   := true;
+          assert v_depth <= STACK_DEPTH
+            report "fastnms_nms_region: stack overflow"
+            severity failure;
+        end if;
+      end if;
+
+      -- 2. A current-row run starts: a class of its own for now.
+      if cstep = '1' and c0 = '1' and cm = '0' then
+        v_key  := pix;
+        v_head := slot_of(cx);
+        v_tail := slot_of(cx);
+        v_att  := '0';
+        v_act  := '1';
+      end if;
+
+      -- 3. Contact between the current run and the top's run.
+      if lock = '1' then
+        touch := (c0 = '1' and p0 = '1') or
+                 (CONNECTIVITY = 8 and ((c0 = '1' and pm = '1') or (cm = '1' and p0 = '1')));
+      end if;
+      if touch then
+        if v_att = '0' then
+          if v_top.head = NONE then
+            v_top.head := v_head;
+          else
+            add_write(lw1, lw2, v_top.tail, v_head);
+          end if;
+          v_top.tail := v_tail;
+          v_top.key  := best(v_top.key, v_key);
+          v_att      := '1';
+        elsif pushed then
+          -- The current run's class is the entry below: the new entry takes it over.
+          v_top.key    := best(v_top.key, v_second.key);
+          v_top.head   := v_second.head;
+          v_top.tail   := v_second.tail;
+          v_top.merged := '1';
+        end if;
+      end if;
+
+      -- 4. The pixel joins its run's class.
+      if cstep = '1' and c0 = '1' and cm = '1' then
+        if v_att = '1' then
+          v_top.key := best(v_top.key, pix);
+        else
+          v_key := best(v_key, pix);
+        end if;
+      end if;
+
+      -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
+      if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
+        if v_att = '0' then
+          add_write(dw1, dw2, v_head, v_key);
+          add_write(lw1, lw2, v_tail, NONE);
+        end if;
+        v_act := '0';
+        v_att := '0';
+      end if;
+
+      -- 6. A previous-row run ends: the last run of its class pops it.
+      if rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol)) and
+         v_top.target = NONE then
+        popped   := v_top;
+        v_top    := v_second;
+        v_second := v_third;
+        v_depth  := v_depth - 1;
+        if v_depth >= 3 then
+          stack_re  <= '1';
+          stack_ra  <= resize(v_depth - 3, stack_ra'length);
+          third_rd1 <= '1';
+        end if;
+        if popped.merged = '1' then
+          v_top.key  := popped.key;
+          v_top.head := popped.head;
+          v_top.tail := popped.tail;
+        elsif v_act = '1' and v_att = '1' then
+          v_key  := popped.key;
+          v_head := popped.head;
+          v_tail := popped.tail;
+          v_att  := '0';
+        elsif popped.head /= NONE then
+          add_write(dw1, dw2, popped.head, popped.key);
+          add_write(lw1, lw2, popped.tail, NONE);
+        else
+          emit     := true;
+          emit_key := popped.key;
+        end if;
+      end if;
+
+      if cstep = '1' and c_eol then
+        v_act := '0';
+        v_att := '0';
+      end if;
+      assert not (lock = '1' and c_eol and v_depth /= 0)
+        report "fastnms_nms_region: classes left open at the end of a row"
+        severity failure;
+
+      top      <= v_top;
+      second   <= v_second;
+      third    <= v_third;
+      depth    <= v_depth;
+      c_key    <= v_key;
+      c_head   <= v_head;
+      c_tail   <= v_tail;
+      attached <= v_att;
+      active   <= v_act;
+
+      -- Current row position.
+      if cstep = '1' then
+        if frame_start = '1' then
+          cw       <= px_width;
+          c_penult <= resize(px_width - 2, XB);
+        end if;
+        frame_start <= px_eof;
+        if c_eol then
+          cm <= '0';
+          cx <= (others => '0');
+          if px_eof = '1' then
+            cy        <= (others => '0');
+            first_row <= '1';
+          else
+            cy        <= cy + 1;
+            first_row <= '0';
+          end if;
+        else
+          cm <= c0;
+          cx <= cx + 1;
+        end if;
+      end if;
+
+      -- The reader's next column, and its prefetched bits.
+      if rstep = '1' then
+        rcol <= r_next;
+        if r_ahead = r_lastcol then
+          r_ahead <= (others => '0');
+        else
+          r_ahead <= r_ahead + 1;
+        end if;
+        p0 <= row_rd(0);
+        if r_last = '1' then
+          pm <= '0';
+        else
+          pm <= p0;
+        end if;
+      elsif (f_prime = '1' and px_eol = '1') or prime_st = 2 then
+        -- The next reader row (lock-step or flush) starts at column 0.
+        p0        <= row_rd(0);
+        pm        <= '0';
+        rcol      <= (others => '0');
+        r_ahead   <= to_unsigned(2, XB);
+        r_lastcol <= resize(cw - 1, XB);
+      end if;
+
+      -- Primed: the reader's prefetch is valid for its next row (lock-step
+      -- rows keep it so). A flush spends it; a first row's last column sets it
+      -- when its read of column 0 was the last read and no flush moves the
+      -- prefetch after it; PRIME sets it.
+      flush_ends := flush_go = '1' and r_last = '1';
+      if row_re = '1' then
+        holds0 <= row_next0;
+      end if;
+      if flush_go = '1' then
+        primed <= '0';
+      end if;
+      if prime_st = 2 then
+        primed <= '1';
+      end if;
+      if cstep = '1' and c_eol and first_row = '1' and (flushing = '0' or flush_ends) then
+        primed <= holds0;
+      end if;
+      if flush_ends then
+        -- The next reader row is a lock-step row of the current frame.
+        r_ahead   <= to_unsigned(2, XB);
+        r_lastcol <= resize(cw - 1, XB);
+      end if;
+      if lock = '1' and c_eol then
+        r_lastcol <= resize(cw - 1, XB);
+      end if;
+      prime_st <= (others => '0');
+      if prime_st = 1 then
+        prime_st <= to_unsigned(2, 2);
+      end if;
+
+      -- Flush: after a frame's last row, once the reader is free and primed;
+      -- on the next clock when frames come back to back.
+      eof_step := cstep = '1' and px_eof = '1';
+      if flush_ends then
+        flushing    <= '0';
+        eof_pending <= '1';
+      end if;
+      if eof_step then
+        if flushing = '0' or flush_ends then
+          flushing  <= '1';
+          r_ahead   <= to_unsigned(2, XB);
+          r_lastcol <= resize(cw - 1, XB);
+        else
+          flush_pending <= '1';
+          flush_w       <= cw;
+        end if;
+      elsif flush_pending = '1' and (flushing = '0' or flush_ends) and primed = '1' then
+        flushing      <= '1';
+        flush_pending <= '0';
+        r_ahead       <= to_unsigned(2, XB);
+        r_lastcol     <= resize(flush_w - 1, XB);
+      end if;
+      if flushing = '0' and primed = '0' and prime_st = 0 and cstep = '0' and
+         ((px_valid = '1' and first_row = '0') or flush_pending = '1') then
+        prime_st <= to_unsigned(1, 2);
+      end if;
+
+      -- Table writes: the step's first now, a second one on the next clock
+      -- (only the last column of a row makes two; the next clock's step
+      -- writes nothing).
+      if data_spare.en = '1' then
+        data_w     <= data_spare;
+        data_spare <= NO_WRITE;
+      else
+        data_w     <= dw1;
+        data_spare <= dw2;
+      end if;
+      if link_spare.en = '1' then
+        link_w     <= link_spare;
+        link_spare <= NO_WRITE;
+      else
+        link_w     <= lw1;
+        link_spare <= lw2;
+      end if;
+      assert not ((data_spare.en = '1' and dw1.en = '1') or (link_spare.en = '1' and lw1.en = '1'))
+        report "fastnms_nms_region: table writes on consecutive clocks"
+        severity failure;
+
+      -- Forwarding register: a write to the slot read last, after the read.
+      if slot_re = '1' then
+        watch      <= slot_ra;
+        data_fwd_v <= data_w.en and to_sl(data_w.addr = slot_ra);
+        data_fwd   <= unsigned(data_w.data);
+        link_fwd_v <= link_w.en and to_sl(link_w.addr = slot_ra);
+        link_fwd   <= unsigned(link_w.data(SB - 1 downto 0));
+      else
+        if data_w.en = '1' and data_w.addr = watch then
+          data_fwd_v <= '1';
+          data_fwd   <= unsigned(data_w.data);
+        end if;
+        if link_w.en = '1' and link_w.addr = watch then
+          link_fwd_v <= '1';
+          link_fwd   <= unsigned(link_w.data(SB - 1 downto 0));
+        end if;
+      end if;
+
+      -- Records: a closed region, or the end-of-frame beat in a clock
+      -- without one.
+      rec_valid <= '0';
+      if emit then
+        rec_valid <= '1';
+        rec_data  <= '0' & std_logic_vector(not emit_key(XB - 1 downto 0)) &
+                     std_logic_vector(not emit_key(XB + YB - 1 downto XB)) &
+                     std_logic_vector(emit_key(KB - 1 downto XB + YB));
+      elsif eof_pending = '1' and rec_room = '1' then
+        rec_valid   <= '1';
+        rec_data    <= (others => '1');
+        rec_data(SCORE_BITS - 1 downto 0) <= (others => '0');
+        eof_pending <= '0';
+      end if;
+
+      assert not (cstep = '1' and frame_start = '1' and px_sof = '0')
+        report "fastnms_nms_region: a frame's first pixel without in_sof"
+        severity error;
+
+      if rst = '1' then
+        depth         <= (others => '0');
+        attached      <= '0';
+        active        <= '0';
+        cm            <= '0';
+        cx            <= (others => '0');
+        cy            <= (others => '0');
+        first_row     <= '1';
+        frame_start   <= '1';
+        rcol          <= (others => '0');
+        flushing      <= '0';
+        flush_pending <= '0';
+        primed        <= '0';
+        holds0        <= '0';
+        prime_st      <= (others => '0');
+        eof_pending   <= '0';
+        rec_valid     <= '0';
+        stack_we      <= '0';
+        stack_re      <= '0';
+        third_rd1     <= '0';
+        third_rd2     <= '0';
+        data_w        <= NO_WRITE;
+        data_spare    <= NO_WRITE;
+        link_w        <= NO_WRITE;
+        link_spare    <= NO_WRITE;
+        data_fwd_v    <= '0';
+        link_fwd_v    <= '0';
+      end if;
+    end if;
+
+  end process step;
+
+
+  row_memory : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => MAX_WIDTH,
+      WIDTH => 1
+    )
+    port map (
+      clk     => clk,
+      wr_en   => row_we,
+      wr_addr => row_wa,
+      wr_data => row_wd,
+      rd_en   => row_re,
+      rd_addr => row_ra,
+      rd_data => row_rd
+    );
+
+  data_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => KB
+    )
+    port map (
+      clk     => clk,
+      wr_en   => data_w.en,
+      wr_addr => resize(data_w.addr, clog2(SLOTS)),
+      wr_data => data_w.data,
+      rd_en   => slot_re,
+      rd_addr => resize(slot_ra, clog2(SLOTS)),
+      rd_data => data_rd
+    );
+
+  link_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => SB
+    )
+    port map (
+      clk     => clk,
+      wr_en   => link_w.en,
+      wr_addr => resize(link_w.addr, clog2(SLOTS)),
+      wr_data => link_w.data(SB - 1 downto 0),
+      rd_en   => slot_re,
+      rd_addr => resize(slot_ra, clog2(SLOTS)),
+      rd_data => link_rd
+    );
+
+  stack_memory : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => STACK_WORDS,
+      WIDTH => ENTRY_BITS
+    )
+    port map (
+      clk     => clk,
+      wr_en   => stack_we,
+      wr_addr => stack_wa,
+      wr_data => stack_wd,
+      rd_en   => stack_re,
+      rd_addr => stack_ra,
+      rd_data => stack_rd
+    );
+
+  records : entity work.fastnms_fifo
+    generic map (
+      DEPTH => 8,
+      WIDTH => OUT_BITS,
+      STYLE => "distributed"
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => rec_valid,
+      in_ready  => open,
+      in_room2  => rec_room,
+      in_data   => rec_data,
+      out_valid => out_valid,
+      out_ready => out_ready,
+      out_data  => q_data,
+      busy      => open
+    );
+
+  out_eof   <= q_data(OUT_BITS - 1);
+  out_x     <= unsigned(q_data(OUT_BITS - 2 downto YB + SCORE_BITS));
+  out_y     <= unsigned(q_data(YB + SCORE_BITS - 1 downto SCORE_BITS));
+  out_score <= unsigned(q_data(SCORE_BITS - 1 downto 0));
 
 end architecture rtl;

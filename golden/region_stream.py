@@ -1,0 +1,325 @@
+"""Step-by-step model of the region NMS hardware (rtl/nms/fastnms_nms_region.vhd).
+
+It holds exactly the state the RTL holds and changes it with the same operations, one column
+per step: the previous row's corner bits (row memory), a link table and a data table indexed
+by run slot (start column // 2), a stack of the previous row's open classes, and the current
+run's class. Its records, in closing order, must equal `nms.nms_region` as sets; its asserts
+are the design's invariants (the stack discipline, one access per memory port per step, every
+table word read in the row after the one that wrote it). docs/fastnms_nms_region.md explains
+the algorithm; this file is its executable form.
+
+Why no content needs a stall: the classes of one row's runs never cross (two regions cannot
+interleave along a row without meeting above it), so the open classes of the previous row
+nest and live on a stack, and every operation of a step touches only the stack's top two
+entries, the current run's class and one word of each table.
+
+Clock schedule (what `RegionStream.run` models clock by clock): a current-row step takes one
+input pixel; rows >= 1 step the previous row's reader in lock-step with it. After a frame's
+last pixel the reader "flushes" that last row alone (no current row), one column per clock,
+in parallel with the next frame's first row (which has no previous row), then emits the
+end-of-frame beat. The input waits only for the output (a full record buffer) and, when a
+frame is narrower than the one before it, for the end of the flush before its second row.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+NONE = -1  # "no slot" in target fields
+
+
+def key(score: int, x: int, y: int) -> tuple[int, int, int]:
+    """Larger key = better: higher score, then earlier in raster order."""
+    return (score, -y, -x)
+
+
+def best(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
+    return a if a >= b else b
+
+
+@dataclass
+class Entry:
+    """A previous-row class on the stack (an open region seen from the current row)."""
+
+    target: int  # slot of its next run in the previous row, NONE after its last
+    data: tuple[int, int, int]  # best key (valid unless merged into the entry above)
+    head: int = NONE  # slot of its first run in the current row, NONE if none yet
+    tail: int = NONE  # slot of its latest run in the current row
+    merged: bool = False  # holds the data of the entry below too (merged with it)
+
+
+@dataclass
+class Group:
+    """The current run's class while it is not attached to the stack's top."""
+
+    data: tuple[int, int, int]
+    head: int
+    tail: int
+
+
+@dataclass
+class Stats:
+    max_depth: int = 0
+    steps: int = 0
+    flush_steps: int = 0
+    records: int = 0
+    clocks: int = 0
+
+
+@dataclass
+class _Table:
+    """One RAM: word per slot, with the (frame, row) that wrote it, to check the schedule."""
+
+    words: dict[int, tuple[object, tuple[int, int]]] = field(default_factory=dict)
+    writes_this_step: int = 0
+    allowed: int = 1  # writes the port can take in this step (2 with the spare register)
+    total: int = 0
+
+    def write(self, slot: int, value: object, tag: tuple[int, int]) -> None:
+        self.writes_this_step += 1
+        self.total += 1
+        assert self.writes_this_step <= self.allowed, "more writes than the port takes"
+        self.words[slot] = (value, tag)
+
+    def read(self, slot: int, tag: tuple[int, int]) -> object:
+        value, written = self.words[slot]
+        assert written == tag, f"slot {slot} holds row {written}, expected {tag}"
+        return value
+
+
+class RegionStream:
+    """The region NMS state machine. `step` advances one column; `run` schedules clocks."""
+
+    def __init__(self, connectivity: int, max_width: int):
+        if connectivity not in (4, 8):
+            raise ValueError("connectivity must be 4 or 8")
+        self.conn8 = connectivity == 8
+        self.max_width = max_width
+        self.stack_depth = stack_depth(max_width)
+        self.data = _Table()
+        self.link = _Table()
+        self.stack: list[Entry] = []
+        self.stats = Stats()
+        self.out: list[tuple[int, int, int]] = []
+        self._reset_current()
+
+    def _reset_current(self) -> None:
+        self.group: Group | None = None  # current run's class when not attached
+        self.attached = False  # current run belongs to the stack's top
+        self.active = False  # a current run is open
+
+    # ---- one column ---------------------------------------------------------------------
+
+    def step(
+        self,
+        x: int,
+        width: int,
+        prev: tuple[int, int] | None,
+        cur: tuple[int, int, int] | None,
+        prev_tag: tuple[int, int],
+        cur_tag: tuple[int, int],
+    ) -> None:
+        """Column x of a row of `width`.
+
+        prev: (bit at x - 1, bit at x) of the previous row, or None when the reader does not
+        step (first row of a frame). cur: (bit at x - 1, bit at x, score at x) of the current
+        row, or None (flush). prev_tag / cur_tag: (frame, row) of those rows.
+        """
+        eol = x == width - 1
+        self.data.writes_this_step = 0
+        self.link.writes_this_step = 0
+        # The last column of a row may write a table twice (a current run and a previous-row
+        # run that end there without touching finalize two classes; or a contact links and
+        # the class then ends); the second write waits in a spare register for the next
+        # clock, whose step (column 0, or a flush) never writes.
+        self.data.allowed = self.link.allowed = 2 if eol else 1
+        pm, p0 = prev if prev is not None else (0, 0)
+        cm, c0, score = cur if cur is not None else (0, 0, 0)
+        slot = x // 2
+        pushed = False
+        # 1. A previous-row run starts: its class continues the top, or is pushed.
+        if p0 and not pm:
+            assert all(e.target != slot for e in self.stack[:-1]), "crossing classes"
+            if self.stack and self.stack[-1].target == slot:
+                self.stack[-1].target = self.link.read(slot, prev_tag)
+            else:
+                data = self.data.read(slot, prev_tag)
+                self.stack.append(Entry(self.link.read(slot, prev_tag), data))
+                pushed = True
+                assert len(self.stack) <= self.stack_depth, "stack overflow"
+                self.stats.max_depth = max(self.stats.max_depth, len(self.stack))
+        # 2. A current-row run starts: a class of its own until it touches the previous row.
+        if c0 and not cm:
+            self.group = Group(key(score, x, cur_tag[1]), slot, slot)
+            self.attached = False
+            self.active = True
+        # 3. Contact between the current run and a previous-row run (always the top's).
+        touch = bool(prev is not None and cur is not None) and (
+            bool(c0 and p0) or (self.conn8 and bool((c0 and pm) or (cm and p0)))
+        )
+        if touch:
+            top = self.stack[-1]
+            if not self.attached:
+                g = self.group
+                if top.head == NONE:
+                    top.head = g.head
+                else:
+                    self.link.write(top.tail, g.head, cur_tag)
+                top.tail = g.tail
+                top.data = best(top.data, g.data)
+                self.group = None
+                self.attached = True
+            elif pushed:
+                # The current run's class is the entry below: the new entry takes it over.
+                below = self.stack[-2]
+                assert below.head != NONE
+                top.data = best(top.data, below.data)
+                top.head, top.tail = below.head, below.tail
+                top.merged = True
+        # 4. The current pixel joins its run's class.
+        if c0 and cm:
+            pix = key(score, x, cur_tag[1])
+            if self.attached:
+                self.stack[-1].data = best(self.stack[-1].data, pix)
+            else:
+                self.group.data = best(self.group.data, pix)
+        # 5. The current run ends (at x - 1, or at x at the end of the row).
+        if (cm and not c0) or (c0 and eol):
+            if not self.attached:
+                self._finalize(self.group, cur_tag)
+            self._reset_current()
+        # 6. A previous-row run ends: the last run of its class pops it.
+        if ((pm and not p0) or (p0 and eol)) and self.stack[-1].target == NONE:
+            e = self.stack.pop()
+            if e.merged:
+                below = self.stack[-1]
+                below.data, below.head, below.tail = e.data, e.head, e.tail
+            elif self.active and self.attached:
+                self.group = Group(e.data, e.head, e.tail)
+                self.attached = False
+            elif e.head != NONE:
+                self._finalize(e, cur_tag)
+            else:
+                score_, ny, nx = e.data
+                self.out.append((-nx, -ny, score_))
+                self.stats.records += 1
+        if eol and cur is not None:
+            assert not self.active
+        if eol and prev is not None and cur is not None:
+            assert not self.stack, "classes left open at the end of a row"
+
+    def _finalize(self, g: Group | Entry, tag: tuple[int, int]) -> None:
+        """The class has all its current-row runs: its data waits at its first run's slot,
+        and its last run links to nothing."""
+        self.data.write(g.head, g.data, tag)
+        self.link.write(g.tail, NONE, tag)
+
+    # ---- clock schedule -------------------------------------------------------------------
+
+    def run(
+        self,
+        frames: list[tuple[np.ndarray, np.ndarray]],
+        in_valid=None,
+        out_ready=None,
+        out_depth: int = 4,
+    ) -> tuple[list[list[tuple[int, int, int]]], list[int]]:
+        """Frames back to back through the clock schedule.
+
+        in_valid(clock) / out_ready(clock): the input offers a pixel / the consumer takes a
+        record in that clock (default: always). Returns per frame its records in output order
+        and the clock of its end-of-frame beat.
+        """
+        in_valid = in_valid or (lambda _c: True)
+        out_ready = out_ready or (lambda _c: True)
+        bits = {}  # (frame, y) -> corner bits of the row
+        pixels = []  # (frame, y, x, width, height, score)
+        for f, (corner, score) in enumerate(frames):
+            h, w = corner.shape
+            assert 3 <= w <= self.max_width, "width out of range"
+            for y in range(h):
+                bits[(f, y)] = [int(b) for b in corner[y]]
+                pixels += [(f, y, x, w, h, int(score[y, x])) for x in range(w)]
+        per_frame: list[list[tuple[int, int, int]]] = [[] for _ in frames]
+        eof_clock = [0] * len(frames)
+        order: list[int] = []  # frame of each beat leaving, to check frames do not mix
+        fifo: list[tuple[str, int, tuple[int, int, int] | None]] = []
+        flush = None  # [frame, column, width, height]: the reader flushing a last row
+        queued = None  # the next frame's flush, when its last pixel came before the reader
+        eof_pending = None  # frame whose end-of-frame beat is due
+        i = clock = 0
+        spare_busy = {id(self.data): False, id(self.link): False}
+        while i < len(pixels) or flush or queued or eof_pending is not None or fifo:
+            if fifo and out_ready(clock):
+                kind, f, rec = fifo.pop(0)
+                order.append(f)
+                if kind == "eof":
+                    eof_clock[f] = clock
+                else:
+                    per_frame[f].append(rec)
+            room = len(fifo) < out_depth  # a clock emits at most one record
+            before = {id(t): t.total for t in (self.data, self.link)}
+            emitted = []
+            flushed_past = -1
+            if flush is None and queued is not None:
+                flush, queued = queued, None
+            if flush and room:  # the reader alone, on a frame's last row
+                ff, fx, fw, fh = flush
+                up = bits[(ff, fh - 1)]
+                tag = (ff, fh - 1)
+                n0 = len(self.out)
+                self.step(fx, fw, (up[fx - 1] if fx else 0, up[fx]), None, tag, tag)
+                emitted += [("rec", ff, r) for r in self.out[n0:]]
+                self.stats.flush_steps += 1
+                flush[1] += 1
+                flushed_past = fx
+            if i < len(pixels) and in_valid(clock) and room:
+                f, y, x, w, h, s = pixels[i]
+                if y >= 1:  # needs the reader, in lock-step
+                    go = flush is None and queued is None
+                else:  # no previous row; never overtakes the previous frame's flush
+                    # (its last column writes the slot of column x + 1 of a wider flush)
+                    upto = x + 1 if x == w - 1 else x
+                    go = queued is None and (
+                        flush is None or upto <= flushed_past or flushed_past == flush[2] - 1
+                    )
+                if go:
+                    row = bits[(f, y)]
+                    prev = None
+                    if y >= 1:
+                        up = bits[(f, y - 1)]
+                        prev = (up[x - 1] if x else 0, up[x])
+                    n0 = len(self.out)
+                    self.step(x, w, prev, (row[x - 1] if x else 0, row[x], s), (f, y - 1), (f, y))
+                    emitted += [("rec", f, r) for r in self.out[n0:]]
+                    self.stats.steps += 1
+                    i += 1
+                    if x == w - 1 and y == h - 1:
+                        queued = [f, 0, w, h]
+            assert len(emitted) <= 1, "two records in one clock"
+            if flush and flush[1] == flush[2]:
+                flush, eof_done = None, flush[0]
+            else:
+                eof_done = None
+            if eof_pending is not None and not emitted and room:
+                emitted.append(("eof", eof_pending, None))
+                eof_pending = None
+            fifo += emitted
+            for t in (self.data, self.link):  # one write port, one spare register
+                n = t.total - before[id(t)]
+                assert n <= 2 and not (spare_busy[id(t)] and n), "write port overbooked"
+                spare_busy[id(t)] = n == 2
+            if eof_done is not None:
+                assert eof_pending is None
+                eof_pending = eof_done
+            clock += 1
+        assert order == sorted(order), "records of two frames mixed"
+        self.stats.clocks = clock
+        return per_frame, eof_clock
+
+
+def stack_depth(max_width: int) -> int:
+    """Open classes of the previous row at once: each entry below the top has a run left of
+    the column and one right of it, all distinct, so at most (MAX_WIDTH + 1) // 4 + 1."""
+    return (max_width + 1) // 4 + 1
