@@ -40,7 +40,6 @@ MORE = [
     ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
     ("fastnms_nms_region", {"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
-    ("fastnms_fifo", {"STYLE": "ultra"}, "STYLE must be"),
     ("fastnms_axi", {"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_window", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
 ]
