@@ -174,6 +174,7 @@ def build(
                 log.flush()
                 if subprocess.run(cmd, stdout=out, stderr=log).returncode != 0:
                     raise EngineError(f"GHDL's synthesis failed; see {log.name}")
+            check_netlist(netlist.read_text())
             cflags = f"{CXXFLAGS} -I{REGS_HEADER.parent}"
             cmd = ["verilator", *VERILATOR_FLAGS, "-j", str(os.cpu_count() or 1)]
             cmd += ["--top-module", TOP, "-CFLAGS", cflags, "--Mdir", str(where / "obj")]
@@ -185,6 +186,23 @@ def build(
             if old != where and len(old.name) == len(where.name):
                 shutil.rmtree(old, ignore_errors=True)
         return exe, time.perf_counter() - start
+
+
+# GHDL 2.0 writes a constant vector of more than 32 bits as a Verilog string
+# ("0101..."), which Verilog reads as ASCII characters: the netlist then differs
+# from the RTL. The RTL keeps such constants out; this catches a new one.
+_WIDE_CONSTANT = re.compile(r'"[01]{33,}"')
+
+
+def check_netlist(verilog: str) -> None:
+    """Fail on a constant that GHDL's Verilog output cannot carry."""
+    found = _WIDE_CONSTANT.search(verilog)
+    if found:
+        line = verilog.count("\n", 0, found.start()) + 1
+        raise EngineError(
+            f"GHDL wrote a constant of {len(found.group()) - 2} bits as a string (netlist line "
+            f"{line}); build it from parts of at most 32 bits in the RTL"
+        )
 
 
 def run(

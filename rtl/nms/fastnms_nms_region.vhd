@@ -125,14 +125,22 @@ architecture rtl of fastnms_nms_region is
 
   end function slot_of;
 
-  -- A table write request: the step's first and, at the end of a row, second.
-  type write_t is record
+  -- Table write requests: the step's first and, at the end of a row, second.
+  type data_write_t is record
     en   : std_logic;
     addr : slot_t;
-    data : std_logic_vector(KB - 1 downto 0);
-  end record write_t;
+    data : key_t;
+  end record data_write_t;
 
-  constant NO_WRITE : write_t := (en => '0', addr => (others => '0'), data => (others => '0'));
+  type link_write_t is record
+    en   : std_logic;
+    addr : slot_t;
+    data : slot_t;
+  end record link_write_t;
+
+  -- (No constant wider than 32 bits: GHDL's Verilog output writes those as
+  -- strings. The data of a write that is not enabled does not matter.)
+  constant NO_LINK_WRITE : link_write_t := (en => '0', addr => (others => '0'), data => NONE);
 
   -- Input, through a skid buffer (registered in_ready).
   signal px_valid  : std_logic;
@@ -191,13 +199,13 @@ architecture rtl of fastnms_nms_region is
   signal row_re      : std_logic;
   signal row_ra      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
   signal row_rd      : std_logic_vector(0 downto 0);
-  signal data_w      : write_t;
-  signal data_spare  : write_t;
+  signal data_w      : data_write_t;
+  signal data_spare  : data_write_t;
   signal slot_re     : std_logic;
   signal slot_ra     : slot_t;
   signal data_rd     : std_logic_vector(KB - 1 downto 0);
-  signal link_w      : write_t;
-  signal link_spare  : write_t;
+  signal link_w      : link_write_t;
+  signal link_spare  : link_write_t;
   signal link_rd     : std_logic_vector(SB - 1 downto 0);
   -- The slot read last, and what was written to it since the read.
   signal watch       : slot_t;
@@ -216,7 +224,10 @@ architecture rtl of fastnms_nms_region is
 
   -- Records.
   signal rec_valid   : std_logic;
-  signal rec_data    : std_logic_vector(OUT_BITS - 1 downto 0);
+  signal rec_eof     : std_logic;
+  signal rec_x       : unsigned(XB - 1 downto 0);
+  signal rec_y       : unsigned(YB - 1 downto 0);
+  signal rec_score   : unsigned(SCORE_BITS - 1 downto 0);
   signal rec_room    : std_logic;
   signal eof_pending : std_logic;
   signal q_data      : std_logic_vector(OUT_BITS - 1 downto 0);
@@ -244,7 +255,7 @@ begin
     report "fastnms_nms_region: MAX_WIDTH must be at least 3"
     severity failure;
 
-  input : entity work.fastnms_skid_buffer
+  pixel_input : entity work.fastnms_skid_buffer
     generic map (
       WIDTH => WB + SCORE_BITS + 4
     )
@@ -352,14 +363,14 @@ begin
   begin
 
     if data_w.en = '1' and data_w.addr = watch then
-      cur_data <= unsigned(data_w.data);
+      cur_data <= data_w.data;
     elsif data_fwd_v = '1' then
       cur_data <= data_fwd;
     else
       cur_data <= unsigned(data_rd);
     end if;
     if link_w.en = '1' and link_w.addr = watch then
-      cur_link <= unsigned(link_w.data(SB - 1 downto 0));
+      cur_link <= link_w.data;
     elsif link_fwd_v = '1' then
       cur_link <= link_fwd;
     else
@@ -385,27 +396,37 @@ begin
     variable r_eol      : boolean;
     variable c_eol      : boolean;
     variable pix        : key_t;
-    variable dw1        : write_t;
-    variable dw2        : write_t;
-    variable lw1        : write_t;
-    variable lw2        : write_t;
+    variable dw1        : data_write_t;
+    variable dw2        : data_write_t;
+    variable lw1        : link_write_t;
+    variable lw2        : link_write_t;
     variable emit       : boolean;
     variable emit_key   : key_t;
     variable touch      : boolean;
     variable flush_ends : boolean;
     variable eof_step   : boolean;
 
-    procedure add_write (variable w1 : inout write_t; variable w2 : inout write_t;
-                         addr : slot_t; data : unsigned) is
+    procedure add_data_write (addr : slot_t; data : key_t) is
     begin
 
-      if w1.en = '0' then
-        w1 := (en => '1', addr => addr, data => std_logic_vector(resize(data, KB)));
+      if dw1.en = '0' then
+        dw1 := (en => '1', addr => addr, data => data);
       else
-        w2 := (en => '1', addr => addr, data => std_logic_vector(resize(data, KB)));
+        dw2 := (en => '1', addr => addr, data => data);
       end if;
 
-    end procedure add_write;
+    end procedure add_data_write;
+
+    procedure add_link_write (addr : slot_t; data : slot_t) is
+    begin
+
+      if lw1.en = '0' then
+        lw1 := (en => '1', addr => addr, data => data);
+      else
+        lw2 := (en => '1', addr => addr, data => data);
+      end if;
+
+    end procedure add_link_write;
 
   begin
 
@@ -419,12 +440,12 @@ begin
       v_tail   := c_tail;
       v_att    := attached;
       v_act    := active;
-      dw1      := NO_WRITE;
-      dw2      := NO_WRITE;
-      lw1      := NO_WRITE;
-      lw2      := NO_WRITE;
+      dw1      := (en => '0', addr => c_head, data => c_key);
+      dw2      := dw1;
+      lw1      := NO_LINK_WRITE;
+      lw2      := NO_LINK_WRITE;
       emit     := false;
-      emit_key := (others => '0');
+      emit_key := top.key;
       pushed   := false;
       touch    := false;
 
@@ -441,9 +462,11 @@ begin
       r_eol := r_last = '1';
       c_eol := px_eol = '1';
       pix   := px_score & not cy & not cx;
+      -- synthesis translate_off
       assert not (lock = '1' and rcol /= cx)
         report "fastnms_nms_region: reader and current row out of step"
         severity failure;
+      -- synthesis translate_on
 
       -- 1. A previous-row run starts at rcol: continue the top's class, or push.
       if rstep = '1' and p0 = '1' and pm = '0' then
@@ -463,9 +486,11 @@ begin
                        merged => '0', key => cur_data);
           v_depth  := v_depth + 1;
           pushed   := true;
+          -- synthesis translate_off
           assert v_depth <= STACK_DEPTH
             report "fastnms_nms_region: stack overflow"
             severity failure;
+          -- synthesis translate_on
         end if;
       end if;
 
@@ -488,7 +513,7 @@ begin
           if v_top.head = NONE then
             v_top.head := v_head;
           else
-            add_write(lw1, lw2, v_top.tail, v_head);
+            add_link_write(v_top.tail, v_head);
           end if;
           v_top.tail := v_tail;
           v_top.key  := best(v_top.key, v_key);
@@ -514,8 +539,8 @@ begin
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
       if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
         if v_att = '0' then
-          add_write(dw1, dw2, v_head, v_key);
-          add_write(lw1, lw2, v_tail, NONE);
+          add_data_write(v_head, v_key);
+          add_link_write(v_tail, NONE);
         end if;
         v_act := '0';
         v_att := '0';
@@ -543,8 +568,8 @@ begin
           v_tail := popped.tail;
           v_att  := '0';
         elsif popped.head /= NONE then
-          add_write(dw1, dw2, popped.head, popped.key);
-          add_write(lw1, lw2, popped.tail, NONE);
+          add_data_write(popped.head, popped.key);
+          add_link_write(popped.tail, NONE);
         else
           emit     := true;
           emit_key := popped.key;
@@ -555,9 +580,11 @@ begin
         v_act := '0';
         v_att := '0';
       end if;
+      -- synthesis translate_off
       assert not (lock = '1' and c_eol and v_depth /= 0)
         report "fastnms_nms_region: classes left open at the end of a row"
         severity failure;
+      -- synthesis translate_on
 
       top      <= v_top;
       second   <= v_second;
@@ -677,37 +704,39 @@ begin
       -- writes nothing).
       if data_spare.en = '1' then
         data_w     <= data_spare;
-        data_spare <= NO_WRITE;
+        data_spare.en <= '0';
       else
         data_w     <= dw1;
         data_spare <= dw2;
       end if;
       if link_spare.en = '1' then
         link_w     <= link_spare;
-        link_spare <= NO_WRITE;
+        link_spare <= NO_LINK_WRITE;
       else
         link_w     <= lw1;
         link_spare <= lw2;
       end if;
+      -- synthesis translate_off
       assert not ((data_spare.en = '1' and dw1.en = '1') or (link_spare.en = '1' and lw1.en = '1'))
         report "fastnms_nms_region: table writes on consecutive clocks"
         severity failure;
+      -- synthesis translate_on
 
       -- Forwarding register: a write to the slot read last, after the read.
       if slot_re = '1' then
         watch      <= slot_ra;
         data_fwd_v <= data_w.en and to_sl(data_w.addr = slot_ra);
-        data_fwd   <= unsigned(data_w.data);
+        data_fwd   <= data_w.data;
         link_fwd_v <= link_w.en and to_sl(link_w.addr = slot_ra);
-        link_fwd   <= unsigned(link_w.data(SB - 1 downto 0));
+        link_fwd   <= link_w.data;
       else
         if data_w.en = '1' and data_w.addr = watch then
           data_fwd_v <= '1';
-          data_fwd   <= unsigned(data_w.data);
+          data_fwd   <= data_w.data;
         end if;
         if link_w.en = '1' and link_w.addr = watch then
           link_fwd_v <= '1';
-          link_fwd   <= unsigned(link_w.data(SB - 1 downto 0));
+          link_fwd   <= link_w.data;
         end if;
       end if;
 
@@ -716,19 +745,26 @@ begin
       rec_valid <= '0';
       if emit then
         rec_valid <= '1';
-        rec_data  <= '0' & std_logic_vector(not emit_key(XB - 1 downto 0)) &
-                     std_logic_vector(not emit_key(XB + YB - 1 downto XB)) &
-                     std_logic_vector(emit_key(KB - 1 downto XB + YB));
+        rec_eof   <= '0';
+        rec_x     <= not emit_key(XB - 1 downto 0);
+        rec_y     <= not emit_key(XB + YB - 1 downto XB);
+        rec_score <= emit_key(KB - 1 downto XB + YB);
       elsif eof_pending = '1' and rec_room = '1' then
+        -- Separate narrow registers: GHDL's Verilog output writes a constant
+        -- vector of more than 32 bits as a string (ASCII digits).
         rec_valid   <= '1';
-        rec_data    <= (others => '1');
-        rec_data(SCORE_BITS - 1 downto 0) <= (others => '0');
+        rec_eof     <= '1';
+        rec_x       <= (others => '1');
+        rec_y       <= (others => '1');
+        rec_score   <= (others => '0');
         eof_pending <= '0';
       end if;
 
+      -- synthesis translate_off
       assert not (cstep = '1' and frame_start = '1' and px_sof = '0')
         report "fastnms_nms_region: a frame's first pixel without in_sof"
         severity error;
+      -- synthesis translate_on
 
       if rst = '1' then
         depth         <= (others => '0');
@@ -740,6 +776,10 @@ begin
         first_row     <= '1';
         frame_start   <= '1';
         rcol          <= (others => '0');
+        r_ahead       <= to_unsigned(2, XB);
+        r_lastcol     <= (others => '0');
+        p0            <= '0';
+        pm            <= '0';
         flushing      <= '0';
         flush_pending <= '0';
         primed        <= '0';
@@ -751,10 +791,10 @@ begin
         stack_re      <= '0';
         third_rd1     <= '0';
         third_rd2     <= '0';
-        data_w        <= NO_WRITE;
-        data_spare    <= NO_WRITE;
-        link_w        <= NO_WRITE;
-        link_spare    <= NO_WRITE;
+        data_w.en     <= '0';
+        data_spare.en <= '0';
+        link_w        <= NO_LINK_WRITE;
+        link_spare    <= NO_LINK_WRITE;
         data_fwd_v    <= '0';
         link_fwd_v    <= '0';
       end if;
@@ -787,7 +827,7 @@ begin
       clk     => clk,
       wr_en   => data_w.en,
       wr_addr => resize(data_w.addr, clog2(SLOTS)),
-      wr_data => data_w.data,
+      wr_data => std_logic_vector(data_w.data),
       rd_en   => slot_re,
       rd_addr => resize(slot_ra, clog2(SLOTS)),
       rd_data => data_rd
@@ -802,7 +842,7 @@ begin
       clk     => clk,
       wr_en   => link_w.en,
       wr_addr => resize(link_w.addr, clog2(SLOTS)),
-      wr_data => link_w.data(SB - 1 downto 0),
+      wr_data => std_logic_vector(link_w.data),
       rd_en   => slot_re,
       rd_addr => resize(slot_ra, clog2(SLOTS)),
       rd_data => link_rd
@@ -835,7 +875,8 @@ begin
       in_valid  => rec_valid,
       in_ready  => open,
       in_room2  => rec_room,
-      in_data   => rec_data,
+      in_data   => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
+                   std_logic_vector(rec_score),
       out_valid => out_valid,
       out_ready => out_ready,
       out_data  => q_data,
