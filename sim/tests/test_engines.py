@@ -217,6 +217,8 @@ def test_region_nms_hard_content_full_hd(score: str, nms: str, rng, seed):
 def test_netlist_check_refuses_wide_string_constants():
     """GHDL's Verilog output writes constants of more than 32 bits as strings (ASCII):
     the build refuses such a netlist instead of simulating something else."""
+    from fastnms.sim import verilator
+
     verilator.check_netlist('assign a = 32\'b0;\n  assign b = {"0101", c};\n')
     with pytest.raises(verilator.EngineError, match="33 bits as a string"):
         verilator.check_netlist('wire x;\n  assign n1 = s ? "' + "1" * 33 + '" : r;\n')
