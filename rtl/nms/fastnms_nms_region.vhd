@@ -358,12 +358,15 @@ begin
 
   end process reads;
 
-  -- The slot read last, with writes to it since (or in the same clock) first.
+  -- The slot read last, with writes to it since (or in the same clock, or
+  -- waiting in the spare register) first.
   forward : process (all) is
   begin
 
     if data_w.en = '1' and data_w.addr = watch then
       cur_data <= data_w.data;
+    elsif data_spare.en = '1' and data_spare.addr = watch then
+      cur_data <= data_spare.data;
     elsif data_fwd_v = '1' then
       cur_data <= data_fwd;
     else
@@ -371,6 +374,8 @@ begin
     end if;
     if link_w.en = '1' and link_w.addr = watch then
       cur_link <= link_w.data;
+    elsif link_spare.en = '1' and link_spare.addr = watch then
+      cur_link <= link_spare.data;
     elsif link_fwd_v = '1' then
       cur_link <= link_fwd;
     else
@@ -405,6 +410,7 @@ begin
     variable touch      : boolean;
     variable flush_ends : boolean;
     variable eof_step   : boolean;
+    variable v_primed   : std_logic;
 
     procedure add_data_write (addr : slot_t; data : key_t) is
     begin
@@ -650,15 +656,17 @@ begin
       if row_re = '1' then
         holds0 <= row_next0;
       end if;
+      v_primed := primed;
       if flush_go = '1' then
-        primed <= '0';
+        v_primed := '0';
       end if;
       if prime_st = 2 then
-        primed <= '1';
+        v_primed := '1';
       end if;
       if cstep = '1' and c_eol and first_row = '1' and (flushing = '0' or flush_ends) then
-        primed <= holds0;
+        v_primed := holds0;
       end if;
+      primed <= v_primed;
       if flush_ends then
         -- The next reader row is a lock-step row of the current frame.
         r_ahead   <= to_unsigned(2, XB);
@@ -680,7 +688,7 @@ begin
         eof_pending <= '1';
       end if;
       if eof_step then
-        if flushing = '0' or flush_ends then
+        if (flushing = '0' or flush_ends) and v_primed = '1' then
           flushing  <= '1';
           r_ahead   <= to_unsigned(2, XB);
           r_lastcol <= resize(cw - 1, XB);
