@@ -58,7 +58,6 @@ SCORE_BITS = {"opencv": 8, "sad": 12}
 WIDTH, HEIGHT = 1920, 1080
 FRAMES = 3
 THRESHOLD = 20
-EVENT_DEPTH = 512  # fastnms_nms_region's default
 STATUS_ERRORS = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
 
 
@@ -108,47 +107,41 @@ def bits_for(n: int) -> int:
     return clog2(n + 1)
 
 
-def region_memory(
-    max_width: int, max_height: int, score_bits: int, event_depth: int = EVENT_DEPTH
-) -> dict:
+def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
     """The region NMS's memories in bits, from its generics, as the RTL sizes
-    them (rtl/nms/fastnms_nms_region*.vhd), with the paper's formula and a
+    them (rtl/nms/fastnms_nms_region.vhd), with the paper's formula and a
     5-line FIFO NMS beside them."""
-    labels = max_width // 2 + 3
-    label_bits = clog2(labels)
-    run_bits = bits_for(max_width // 2 + 1)
+    slots = (max_width + 1) // 2
+    slot_bits = bits_for(slots)
     x_bits, y_bits = clog2(max_width), bits_for(max_height)
     key_bits = score_bits + x_bits + y_bits
-    event_bits = 6 + 3 * label_bits + score_bits + x_bits + y_bits
-
-    def fifo_words(depth: int) -> int:
-        """fastnms_fifo's RAM: DEPTH rounded up to a power of two, at least 4."""
-        return 2 ** max(2, clog2(depth))
-
+    stack_words = max((max_width + 1) // 4 + 1 - 2, 1)
     rows = [
-        ("label line (RAM index)", max_width, label_bits + 1),
-        # runs, next and prev each carry a flag bit (runs = 1, has next, has prev).
-        ("label tables: region, runs, next, prev", labels, 3 * label_bits + run_bits + 3),
-        ("region tables: best key, head, tail (RAM score)", labels, key_bits + 2 * label_bits),
-        # Each free list is a fastnms_fifo of LABELS + 2 words.
-        ("free lists: labels, regions", 2 * fifo_words(labels + 2), label_bits),
-        ("event queue", fifo_words(event_depth), event_bits),
+        ("row memory (the previous row's corner bits)", max_width, 1),
+        ("link table (next run of the class, by slot)", slots, slot_bits),
+        ("data table (best key of the class, by slot; the paper's RAM score)", slots, key_bits),
+        (
+            "stack of open classes (below its two registers)",
+            stack_words,
+            3 * slot_bits + 1 + key_bits,
+        ),
+        ("record FIFO (LUT RAM)", 8, 1 + x_bits + y_bits + score_bits),
     ]
     breakdown = [{"memory": m, "words": n, "bits_per_word": b, "bits": n * b} for m, n, b in rows]
-    paper = (max_width // 2) * (score_bits + x_bits + y_bits + label_bits)
+    index_bits = clog2(max_width // 2)
+    paper = (max_width // 2) * (score_bits + x_bits + y_bits + index_bits)
     return {
         "max_width": max_width,
         "max_height": max_height,
         "score_bits": score_bits,
-        "labels": labels,
-        "label_bits": label_bits,
+        "slots": slots,
+        "slot_bits": slot_bits,
         "x_bits": x_bits,
         "y_bits": y_bits,
-        "event_depth": event_depth,
         "breakdown": breakdown,
         "total_bits": sum(r["bits"] for r in breakdown),
         "paper_formula_bits": paper,
-        "paper_formula": f"({max_width}/2) x ({score_bits} + {x_bits} + {y_bits} + {label_bits})",
+        "paper_formula": f"({max_width}/2) x ({score_bits} + {x_bits} + {y_bits} + {index_bits})",
         "fifo5_bits": 5 * max_width * score_bits,
         "nms_3x3_bits": 2 * max_width * score_bits,
     }

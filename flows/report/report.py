@@ -71,12 +71,11 @@ REASONS = {
         "not have; `fastnms_core` is the like-for-like comparison."
     ),
     "levels": (
-        "Every decision of the region NMS starts at a flip-flop (which lifted its "
-        "ECP5 Fmax from about 85 to about 135 MHz), but yosys still maps the scan's "
-        "label decision and the table's next-state and RAM-address multiplexers "
-        "(19 states, 7 tables) into 5-7 LUTs; every configuration that contains "
-        "it inherits that depth (fastnms_nms_region.md; the region NMS is to be "
-        "redesigned). "
+        "The region NMS does a whole column of the connected-components step in one "
+        "clock (the stack's top two entries, the current run's class and two key "
+        "comparisons in series), so yosys maps it into many more than 4 levels, and "
+        "every configuration that contains it inherits that depth "
+        "(fastnms_nms_region.md, *Limits*: pipelining the key merges is the next step). "
         "The 3x3 configuration at MAX_HEIGHT 1080 (`fastnms_core` alone and the "
         "top) can come out one level deeper than its blocks: abc chains the window "
         "generators' control logic into 5 levels in that context, though the "
@@ -84,9 +83,9 @@ REASONS = {
         "5th level and says so)."
     ),
     "ppc": (
-        "The region NMS adds a flush pass of W clocks after each frame's last "
-        "row (1 + 1/H clocks per pixel, 1.0009 at 1080 rows), and dense corners "
-        "can back-pressure the input (fastnms_nms_region.md, *Latency and throughput*)."
+        "Back to back, every configuration takes W x H clocks per frame whatever the "
+        "content (the region NMS flushes a frame's last row beside the next frame's "
+        "first); the bench's figure also counts the detector's fill and the last flush."
     ),
 }
 
@@ -552,18 +551,13 @@ def bram_note(summary: list[dict]) -> list[str]:
     if not tops or not blocks:
         return []
     top, block = tops[0], blocks[0]
-    labels = block["generics"]["MAX_WIDTH"] // 2 + 3
-    label_bits = max(1, (labels - 1).bit_length())
-    fill = 100 * labels * label_bits / 18432
     return [
         f"Block RAM of the region configurations: {top['bram18_equiv']} BRAM18-equivalents "
         f"for `{top['config']}` against the paper's {PAPER['bram18_equiv']}. The region NMS "
         f"alone takes {block['bram18_equiv']} ({block.get('bram18', 0)} RAMB18 + "
-        f"{block.get('bram36', 0)} RAMB36): each of its memories (label line, four label "
-        "tables, three region tables, two free lists, the event queue) is its own RAM so "
-        "that a step reads a whole record in one clock, and most are far from full (a "
-        f"{labels} x {label_bits} table fills {fill:.0f} % of a RAMB18); the bench section "
-        "lists their bits.",
+        f"{block.get('bram36', 0)} RAMB36) for its link table, data table and stack, plus "
+        "LUT RAM for its row memory (one bit per column) and its 8-record FIFO; the bench "
+        "section lists their bits.",
         "",
     ]
 
@@ -663,10 +657,9 @@ def bench_section(bench: dict) -> str:
     out.append("")
     for mem in bench["region_memory"]:
         out.append(
-            f"`{mem['config']}` ({mem['score_bits']}-bit score, {mem['labels']} labels of "
-            f"{mem['label_bits']} bits, x {mem['x_bits']} bits, y {mem['y_bits']} bits, "
-            f"EVENT_DEPTH {mem['event_depth']}), from the generics as the RTL sizes its "
-            "memories:"
+            f"`{mem['config']}` ({mem['score_bits']}-bit score, {num(mem['slots'])} slots of "
+            f"{mem['slot_bits']} bits, x {mem['x_bits']} bits, y {mem['y_bits']} bits), from "
+            "the generics as the RTL sizes its memories:"
         )
         out.append("")
         mrows = [
@@ -700,7 +693,8 @@ def bench_section(bench: dict) -> str:
         out.append("")
         out.append(
             f"{ratio:.1f} times the paper's formula, which counts only the region maxima "
-            f"(the region tables here hold the same plus list heads and tails); "
+            "(the data table holds the same; the stack holds the open classes' maxima a "
+            "second time, and the link table replaces the paper's label line); "
             f"{mem['total_bits'] / mem['fifo5_bits']:.2f} times a 5-line FIFO."
         )
         out.append("")

@@ -17,7 +17,6 @@ from fastnms.golden.nms import nms_region
 from fastnms.testing.regions import SHAPES, grid, serpentine, square_spiral
 
 from tb.stream import value
-
 from tb.video import PERIOD_NS, VideoTB, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
