@@ -10,18 +10,16 @@ from flows.synth.synth import entities, ghdl_synth, summary, yosys_xc7
 LATCHES = ("LDCE", "LDPE")
 # The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
 MAX_LOGIC_LEVELS = 4
-# Known exceptions, recorded so that they cannot grow unnoticed: yosys maps the
-# region NMS's scan decision and its table's next-state and RAM-address
-# multiplexers into 6-7 LUTs (docs/fastnms_nms_region.md); the region NMS is to
-# be redesigned.
+# Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
+# does a whole column of its connected-components step in one clock (stack top,
+# current class, a three-way key comparison), which yosys maps into 15-17 levels
+# (docs/fastnms_nms_region.md, *Limits*; pipelining its key merges is open).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc chains the window generators' counter controls (register -> 4
     # LUTs -> the counters' reset/enable) differently (docs/fastnms_core.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
-    "fastnms_nms_region": 7,
-    "fastnms_nms_region_table": 7,
-    "fastnms_nms_region_scan": 6,
+    "fastnms_nms_region": 17,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
@@ -109,14 +107,17 @@ def test_axi_top_1920():
 
 @pytest.mark.parametrize(("score", "nms"), [("sad", "region4"), ("opencv", "region8")])
 def test_core_region_1920(score, nms):
-    """Detector + region NMS at 1920x1080: no latches, no LUT RAM, every
-    memory in block RAM (the detector's 6 BRAM18-equivalents and the region
-    NMS's 14), and the region NMS's logic depth (see DEEPER) not exceeded."""
+    """Detector + region NMS at 1920x1080: no latches; the detector's 6 BRAM18-equivalents
+    and the region NMS's 5 (link table, data table, stack); LUT RAM only for the region
+    NMS's row memory (1920 x 1: 30 RAM64M) and its record FIFO (8 words: 6 RAM32M); the
+    region NMS's logic depth (see DEEPER) not exceeded."""
     generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": score, "NMS": nms}
     netlist, messages = ghdl_synth("fastnms_core", generics)
     assert "latch" not in messages.lower(), messages
     cells = yosys_xc7(netlist, "fastnms_core")
     print(score, nms, summary(cells))
-    assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
-    assert bram18_equivalents(cells) == 20, cells
+    assert not any(cells.get(c) for c in LATCHES), cells
+    lutram = {c: n for c, n in cells.items() if c in LUTRAM and n}
+    assert lutram == {"RAM64M": 30, "RAM32M": 6}, cells
+    assert bram18_equivalents(cells) == 11, cells
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells

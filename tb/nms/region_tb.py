@@ -248,7 +248,8 @@ OUT_LATENCY = 8
 async def never_stalls(dut):
     """The worst content at MAX_WIDTH, three frames each back to back, output always
     ready: in_ready stays high on every clock from the first pixel to the last, the
-    end-of-frame beats come exactly W x H clocks apart, and every record leaves at most
+    end-of-frame beats come exactly W x H clocks apart, each at most W + OUT_LATENCY
+    clocks after its frame's last pixel, and every record leaves at most
     OUT_LATENCY clocks after the pixel W + 1 positions after its region's last one (raster
     order), or W + OUT_LATENCY clocks after the frame's last pixel for a region on the
     last row."""
@@ -282,6 +283,9 @@ async def never_stalls(dut):
         times = tb.sink.times[start_beats:]
         eofs = [t // PERIOD_NS for b, t in zip(beats, times, strict=True) if b["eof"]]
         assert np.diff(eofs).tolist() == [corner.size] * 2, f"{name}: end-of-frame beats {eofs}"
+        for f, eof in enumerate(eofs):
+            last_in = accepts[(f + 1) * corner.size - 1] // PERIOD_NS
+            assert eof - last_in <= w + OUT_LATENCY, f"{name}: end of frame {f} at {eof}"
         ends = region_ends(corner)
         frame = 0
         for b, t in zip(beats, times, strict=True):
