@@ -60,10 +60,10 @@ AMD_BRAM18 = 8
 # Why a target is missed, when the reason is known (shown only for a miss).
 REASONS = {
     "paper-half": (
-        "Compare the block rows below: the detector with the `sad` score and the "
-        "region NMS are each near their documented sizes (fastnms_fast_detector.md, "
-        "fastnms_nms_region.md); the AXI top adds the register file, input checker, record "
-        "packer and corner FIFO."
+        "Compare the block rows below: the redesigned region NMS (one pixel per clock "
+        "for any content) takes more LUTs than the old one (its step does a whole "
+        "column in one clock, fastnms_nms_region.md, *Limits*), and the AXI top adds "
+        "the register file, input checker, record packer and corner FIFO."
     ),
     "amd-lut": (
         "The top's block-RAM count includes the corner FIFO (one RAMB18 at its "
@@ -72,8 +72,9 @@ REASONS = {
     ),
     "levels": (
         "The region NMS does a whole column of the connected-components step in one "
-        "clock (the stack's top two entries, the current run's class and two key "
-        "comparisons in series), so yosys maps it into many more than 4 levels, and "
+        "clock (the continuation compare, the stack's top entries, a three-way key "
+        "comparison and the pop's outcome in one path), so yosys maps it into many "
+        "more than 4 levels, and "
         "every configuration that contains it inherits that depth "
         "(fastnms_nms_region.md, *Limits*: pipelining the key merges is the next step). "
         "The 3x3 configuration at MAX_HEIGHT 1080 (`fastnms_core` alone and the "
