@@ -43,7 +43,7 @@ entity fastnms_fifo is
     DEPTH : positive := 512;
     WIDTH : positive := 36;
     -- ram_style of the RAM (see fastnms_ram_sdp): "distributed" for a few words.
-    STYLE : string   := "block"
+    STYLE : string := "block"
   );
   port (
     clk       : in    std_logic;

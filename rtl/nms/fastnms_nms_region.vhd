@@ -64,9 +64,9 @@ architecture rtl of fastnms_nms_region is
   constant KB : positive := SCORE_BITS + YB + XB;
   -- Slots: one per two columns (two runs of a row start at least two apart).
   -- SB holds every slot and NONE, which is none of them.
-  constant SLOTS       : positive := (MAX_WIDTH + 1) / 2;
-  constant SB          : positive := bits_for(SLOTS);
-  constant NONE        : unsigned(SB - 1 downto 0) := (others => '1');
+  constant SLOTS : positive                  := (MAX_WIDTH + 1) / 2;
+  constant SB    : positive                  := bits_for(SLOTS);
+  constant NONE  : unsigned(SB - 1 downto 0) := (others => '1');
   -- Open classes of the previous row at once (golden/region_stream.py,
   -- stack_depth): the top two are registers, the others in a RAM.
   constant STACK_DEPTH : positive := (MAX_WIDTH + 1) / 4 + 1;
@@ -76,6 +76,7 @@ architecture rtl of fastnms_nms_region is
   constant OUT_BITS    : positive := 1 + XB + YB + SCORE_BITS;
 
   subtype slot_t is unsigned(SB - 1 downto 0);
+
   subtype key_t is unsigned(KB - 1 downto 0);
 
   -- A previous-row class on the stack.
@@ -114,6 +115,7 @@ architecture rtl of fastnms_nms_region is
     if a >= b then
       return a;
     end if;
+
     return b;
 
   end function best;
@@ -130,6 +132,7 @@ architecture rtl of fastnms_nms_region is
     ab := a >= b;
     ac := a >= c;
     bc := b >= c;
+
     if use_b and use_c then
       if ab and ac then
         return a;
@@ -148,6 +151,7 @@ architecture rtl of fastnms_nms_region is
       end if;
       return c;
     end if;
+
     return a;
 
   end function best3;
@@ -227,34 +231,34 @@ architecture rtl of fastnms_nms_region is
 
   -- Memories. Read enables and addresses are this clock's steps; writes are
   -- registered.
-  signal row_we      : std_logic;
-  signal row_wa      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal row_wd      : std_logic_vector(0 downto 0);
-  signal row_re      : std_logic;
-  signal row_ra      : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal row_rd      : std_logic_vector(0 downto 0);
-  signal data_w      : data_write_t;
-  signal data_spare  : data_write_t;
-  signal slot_re     : std_logic;
-  signal slot_ra     : slot_t;
-  signal data_rd     : std_logic_vector(KB - 1 downto 0);
-  signal link_w      : link_write_t;
-  signal link_spare  : link_write_t;
-  signal link_rd     : std_logic_vector(SB - 1 downto 0);
+  signal row_we     : std_logic;
+  signal row_wa     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_wd     : std_logic_vector(0 downto 0);
+  signal row_re     : std_logic;
+  signal row_ra     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_rd     : std_logic_vector(0 downto 0);
+  signal data_w     : data_write_t;
+  signal data_spare : data_write_t;
+  signal slot_re    : std_logic;
+  signal slot_ra    : slot_t;
+  signal data_rd    : std_logic_vector(KB - 1 downto 0);
+  signal link_w     : link_write_t;
+  signal link_spare : link_write_t;
+  signal link_rd    : std_logic_vector(SB - 1 downto 0);
   -- The slot read last, and what was written to it since the read.
-  signal watch       : slot_t;
-  signal data_fwd_v  : std_logic;
-  signal data_fwd    : key_t;
-  signal link_fwd_v  : std_logic;
-  signal link_fwd    : slot_t;
-  signal cur_data    : key_t;
-  signal cur_link    : slot_t;
-  signal stack_we    : std_logic;
-  signal stack_wa    : unsigned(clog2(STACK_WORDS) - 1 downto 0);
-  signal stack_wd    : std_logic_vector(ENTRY_BITS - 1 downto 0);
-  signal stack_re    : std_logic;
-  signal stack_ra    : unsigned(clog2(STACK_WORDS) - 1 downto 0);
-  signal stack_rd    : std_logic_vector(ENTRY_BITS - 1 downto 0);
+  signal watch      : slot_t;
+  signal data_fwd_v : std_logic;
+  signal data_fwd   : key_t;
+  signal link_fwd_v : std_logic;
+  signal link_fwd   : slot_t;
+  signal cur_data   : key_t;
+  signal cur_link   : slot_t;
+  signal stack_we   : std_logic;
+  signal stack_wa   : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_wd   : std_logic_vector(ENTRY_BITS - 1 downto 0);
+  signal stack_re   : std_logic;
+  signal stack_ra   : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_rd   : std_logic_vector(ENTRY_BITS - 1 downto 0);
 
   -- Records.
   signal rec_valid   : std_logic;
@@ -269,14 +273,14 @@ architecture rtl of fastnms_nms_region is
   -- This clock's steps: the flush, the current row, both in lock-step (a row
   -- >= 1), the reader (lock-step or flush), a first row's last two columns
   -- priming the reader.
-  signal flush_go : std_logic;
-  signal cur_go   : std_logic;
-  signal cstep    : std_logic;
-  signal lock     : std_logic;
-  signal rstep    : std_logic;
-  signal r_last   : std_logic;
-  signal r_next   : unsigned(XB - 1 downto 0);
-  signal f_prime  : std_logic;
+  signal flush_go  : std_logic;
+  signal cur_go    : std_logic;
+  signal cstep     : std_logic;
+  signal lock      : std_logic;
+  signal rstep     : std_logic;
+  signal r_last    : std_logic;
+  signal r_next    : unsigned(XB - 1 downto 0);
+  signal f_prime   : std_logic;
   signal row_next0 : std_logic; -- this clock reads the next row's column 0
   signal holds0    : std_logic; -- the row memory's output is that bit
 
@@ -345,15 +349,16 @@ begin
   row_we    <= cstep;
   row_wa    <= cx;
   row_wd(0) <= px_corner;
-  cstep    <= cur_go and px_valid;
-  lock     <= cstep and not first_row;
-  rstep    <= lock or flush_go;
-  r_last   <= to_sl(r_ahead = 1);
-  r_next   <= (others => '0') when r_last = '1' else rcol + 1;
+  cstep     <= cur_go and px_valid;
+  lock      <= cstep and not first_row;
+  rstep     <= lock or flush_go;
+  r_last    <= to_sl(r_ahead = 1);
+  r_next    <= (others => '0') when r_last = '1' else
+               rcol + 1;
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
-  f_prime  <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
+  f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
   begin
@@ -361,8 +366,9 @@ begin
     row_re    <= '0';
     row_next0 <= '0';
     row_ra    <= resize(r_ahead, row_ra'length);
-    slot_re <= '0';
-    slot_ra <= slot_of(r_next);
+    slot_re   <= '0';
+    slot_ra   <= slot_of(r_next);
+
     if rstep = '1' then
       -- A flush does not read past its row.
       row_re  <= lock or to_sl(r_ahead >= 2);
@@ -373,11 +379,12 @@ begin
         row_ra    <= (others => '0');
         row_next0 <= '1';
       else
-        row_ra <= to_unsigned(1, row_ra'length);
+        row_ra  <= to_unsigned(1, row_ra'length);
         slot_re <= '1';
         slot_ra <= (others => '0');
       end if;
     end if;
+
     -- The same clock's first row step, when the flush's own read is over.
     if rstep = '1' and lock = '0' and r_ahead < 2 and cstep = '1' and
        first_row = '1' and (cx = c_penult or px_eol = '1') then
@@ -406,6 +413,7 @@ begin
     else
       cur_data <= unsigned(data_rd);
     end if;
+
     if link_w.en = '1' and link_w.addr = watch then
       cur_link <= link_w.data;
     elsif link_spare.en = '1' and link_spare.addr = watch then
@@ -449,7 +457,10 @@ begin
     variable eof_step   : boolean;
     variable v_primed   : std_logic;
 
-    procedure add_data_write (addr : slot_t; data : key_t) is
+    procedure add_data_write (
+      addr : slot_t;
+      data : key_t
+    ) is
     begin
 
       if dw1.en = '0' then
@@ -460,7 +471,10 @@ begin
 
     end procedure add_data_write;
 
-    procedure add_link_write (addr : slot_t; data : slot_t) is
+    procedure add_link_write (
+      addr : slot_t;
+      data : slot_t
+    ) is
     begin
 
       if lw1.en = '0' then
@@ -474,25 +488,25 @@ begin
   begin
 
     if rising_edge(clk) then
-      v_top    := top;
-      v_second := second;
-      v_third  := third;
-      v_depth  := depth;
-      v_key    := c_key;
-      v_head   := c_head;
-      v_tail   := c_tail;
-      v_att    := attached;
-      v_act    := active;
-      dw1      := (en => '0', addr => c_head, data => c_key);
-      dw2      := dw1;
-      lw1      := NO_LINK_WRITE;
-      lw2      := NO_LINK_WRITE;
-      emit     := false;
-      emit_key := top.key;
-      pushed   := false;
-      touch    := false;
-      merge_en := false;
-      merge_key := c_key;
+      v_top      := top;
+      v_second   := second;
+      v_third    := third;
+      v_depth    := depth;
+      v_key      := c_key;
+      v_head     := c_head;
+      v_tail     := c_tail;
+      v_att      := attached;
+      v_act      := active;
+      dw1        := (en => '0', addr => c_head, data => c_key);
+      dw2        := dw1;
+      lw1        := NO_LINK_WRITE;
+      lw2        := NO_LINK_WRITE;
+      emit       := false;
+      emit_key   := top.key;
+      pushed     := false;
+      touch      := false;
+      merge_en   := false;
+      merge_key  := c_key;
       pix_to_top := false;
 
       -- The stack RAM's word below the second entry, two clocks after a pop.
@@ -508,6 +522,7 @@ begin
       r_eol := r_last = '1';
       c_eol := px_eol = '1';
       pix   := px_score & not cy & not cx;
+
       -- synthesis translate_off
       assert not (lock = '1' and rcol /= cx)
         report "fastnms_nms_region: reader and current row out of step"
@@ -528,15 +543,16 @@ begin
             third_rd2 <= '0';
           end if;
           v_second := v_top;
-          v_top    := (target => cur_link, head => NONE, tail => NONE,
-                       merged => '0', key => cur_data);
+          v_top    :=
+          (
+            target => cur_link,
+            head => NONE,
+            tail => NONE,
+            merged => '0',
+            key => cur_data
+          );
           v_depth  := v_depth + 1;
           pushed   := true;
-          -- synthesis translate_off
-          assert v_depth <= STACK_DEPTH
-            report "fastnms_nms_region: stack overflow"
-            severity failure;
-          -- synthesis translate_on
         end if;
       end if;
 
@@ -629,6 +645,13 @@ begin
         v_act := '0';
         v_att := '0';
       end if;
+
+      -- synthesis translate_off
+      assert not (v_depth > STACK_DEPTH)
+        report "fastnms_nms_region: stack overflow"
+        severity failure;
+      -- synthesis translate_on
+
       -- synthesis translate_off
       assert not (lock = '1' and c_eol and v_depth /= 0)
         report "fastnms_nms_region: classes left open at the end of a row"
@@ -754,7 +777,7 @@ begin
       -- (only the last column of a row makes two; the next clock's step
       -- writes nothing).
       if data_spare.en = '1' then
-        data_w     <= data_spare;
+        data_w        <= data_spare;
         data_spare.en <= '0';
       else
         data_w     <= dw1;
@@ -767,6 +790,7 @@ begin
         link_w     <= lw1;
         link_spare <= lw2;
       end if;
+
       -- synthesis translate_off
       assert not ((data_spare.en = '1' and dw1.en = '1') or (link_spare.en = '1' and lw1.en = '1'))
         report "fastnms_nms_region: table writes on consecutive clocks"
@@ -852,7 +876,6 @@ begin
     end if;
 
   end process step;
-
 
   row_memory : entity work.fastnms_ram_sdp
     generic map (

@@ -204,7 +204,7 @@ def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
     assert len({f.cycles for f in result.frames}) == 1, [f.cycles for f in result.frames]
     assert np.diff([f.first_pixel for f in result.frames]).tolist() == [1920 * 40 + 4] * 9
     assert [f.input_stalls for f in result.frames] == [4] * 10
-    for (img, t), f in zip(frames, result.frames, strict=True):
+    for (_img, t), f in zip(frames, result.frames, strict=True):
         print(f"t={t}: {len(f.records)} records, {f.cycles} clocks")
 
 
