@@ -27,6 +27,28 @@ def serpentine(h: int, w: int) -> np.ndarray:
     return mask
 
 
+def comb(h: int, w: int) -> np.ndarray:
+    """Teeth every other column joined by the bottom row: regions apart until the last row."""
+    mask = np.zeros((h, w), dtype=bool)
+    mask[:-1, ::2] = True
+    mask[-1] = True
+    return mask
+
+
+def nested_arches(w: int) -> np.ndarray:
+    """Arches inside arches, each open downwards: the most regions of one row open at once
+    ((w + 3) // 4 nested classes)."""
+    levels = (w + 1) // 4 + 1
+    mask = np.zeros((2 * levels + 2, w), dtype=bool)
+    for k in range(levels):
+        left, right = 2 * k, w - 1 - 2 * k
+        if left > right:
+            break
+        mask[2 * k, left : right + 1] = True
+        mask[2 * k + 1 :, left] = mask[2 * k + 1 :, right] = True
+    return mask
+
+
 def square_spiral(n: int) -> np.ndarray:
     """A spiral path of width 1 with 1-pixel gaps between its turns."""
     mask = np.zeros((n, n), dtype=bool)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from fastnms.golden.nms import nms_region
 from fastnms.golden.region_stream import RegionStream, stack_depth
-from fastnms.testing.regions import SHAPES, grid, serpentine, square_spiral
+from fastnms.testing.regions import SHAPES, comb, grid, nested_arches, serpentine, square_spiral
 
 
 def run(frames, connectivity, max_width=None, **timing):
@@ -21,33 +21,18 @@ def run(frames, connectivity, max_width=None, **timing):
     return model, eof_clocks
 
 
-def nested_arches(width: int) -> np.ndarray:
-    """Arches inside arches, each open downwards: the most classes open at once."""
-    levels = (width + 1) // 4 + 1
-    corner = np.zeros((2 * levels + 2, width), dtype=bool)
-    for k in range(levels):
-        left, right = 2 * k, width - 1 - 2 * k
-        if left > right:
-            break
-        corner[2 * k, left : right + 1] = True
-        corner[2 * k + 1 :, left] = corner[2 * k + 1 :, right] = True
-    return corner
-
-
 def hard_maps(width: int, rng: np.random.Generator) -> list[np.ndarray]:
     h = 14
     yy, xx = np.indices((h, width))
-    comb = np.zeros((h, width), dtype=bool)
-    comb[:-1, ::2] = True
-    comb[-1] = True
+    teeth = comb(h, width)
     diagonal = ((xx + yy) % 3) == 0
     return [
         rng.random((h, width)) < 0.5,
         rng.random((h, width)) < 0.9,
         (xx + yy) % 2 == 0,
         ((xx // 2 + yy // 2) % 2) == 0,
-        comb,
-        comb[::-1].copy(),
+        teeth,
+        teeth[::-1].copy(),
         diagonal,
         serpentine(h, width),
         np.ones((h, width), dtype=bool),

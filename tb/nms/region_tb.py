@@ -14,7 +14,7 @@ import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
 from cocotb.utils import get_sim_time
 from fastnms.golden.nms import nms_region
-from fastnms.testing.regions import SHAPES, grid, serpentine, square_spiral
+from fastnms.testing.regions import SHAPES, comb, grid, nested_arches, serpentine, square_spiral
 
 from tb.stream import value
 from tb.video import PERIOD_NS, VideoTB, record_mismatch, split_records
@@ -104,10 +104,7 @@ def stress_maps(width: int, rng: np.random.Generator) -> list[tuple[np.ndarray, 
             corner, score = np.pad(corner, pad), np.pad(score, pad)
         maps.append((corner, score.astype(np.int64)))
     h = 12
-    comb = np.zeros((h, width), dtype=bool)
-    comb[: h - 1, ::2] = True  # teeth joined by the bottom row
-    comb[h - 1] = True
-    maps.append(scored(comb))
+    maps.append(scored(comb(h, width)))  # teeth joined by the bottom row
     checker = (np.indices((h, width)).sum(0) % 2) == 0  # width/2 regions per row (4-conn)
     maps.append(scored(checker))
     columns = np.zeros((h, width), dtype=bool)
@@ -207,20 +204,13 @@ def worst_maps(width: int, rng: np.random.Generator) -> dict[str, np.ndarray]:
     """Content that made the paper's region NMS stall, at a given width."""
     h = 12
     yy, xx = np.indices((h, width))
-    comb = np.zeros((h, width), dtype=bool)
-    comb[:-1, ::2] = True  # teeth joined at the bottom
-    comb[-1] = True
-    arches = np.zeros((2 * (width // 4) + 2, width), dtype=bool)  # nested, open downwards
-    for k in range(width // 4):
-        arches[2 * k, 2 * k : width - 2 * k] = True
-        arches[2 * k + 1 :, 2 * k] = arches[2 * k + 1 :, width - 1 - 2 * k] = True
     return {
         "noise 50%": rng.random((h, width)) < 0.5,
         "checkerboard": (xx + yy) % 2 == 0,
-        "comb": comb,
+        "comb": comb(h, width),  # teeth joined at the bottom
         "single pixels": (xx % 2 == 0) & (yy % 2 == 0),  # width / 2 regions per row
         "serpentine": serpentine(h, width),
-        "nested arches": arches,
+        "nested arches": nested_arches(width),
         "full": np.ones((h, width), dtype=bool),
     }
 
