@@ -15,7 +15,7 @@ IMAGE    ?= $(DEMO)/scene_1920x1080.png
 DEMO_T   ?= 20
 
 .PHONY: help setup demo test test-full sim golden-test synth-check synth-report lint clean \
-	fusesoc-sim vivado-ip vivado-bd vivado-ooc check-vivado synth bench regmap
+	fusesoc-sim vivado-ip vivado-bd vivado-bd-needs-board vivado-ooc check-vivado synth bench regmap
 
 help:
 	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a 1920x1080 photograph, writes $(DEMO)/*.png"
@@ -29,8 +29,8 @@ help:
 	@echo "make regmap     regenerate the register map files from rtl/top/fastnms_regs.toml"
 	@echo "make fusesoc-sim  FuseSoC + GHDL smoke test of fastnms.core"
 	@echo "make vivado-ip    package the Vivado IP into build/vivado/ip (needs Vivado)"
-	@echo "make vivado-bd    ZedBoard/ZC702 block design in build/vivado/zc7z20 (needs Vivado; BD_ARGS=--impl for the bitstream)"
-	@echo "make vivado-ooc   out-of-context synthesis + implementation at 150 MHz, reports in build/vivado/ooc (needs Vivado)"
+	@echo "make vivado-bd BOARD=zedboard|zc702|none  Zynq-7020 block design in build/vivado/zc7z20 (needs Vivado; BD_ARGS=--impl for the bitstream)"
+	@echo "make vivado-ooc   out-of-context synthesis + implementation at 142.857 MHz (FCLK_CLK0), reports in build/vivado/ooc (needs Vivado)"
 
 # ---- set-up ----------------------------------------------------------------
 setup: $(STAMP) check-ghdl check-verilator
@@ -124,6 +124,7 @@ fusesoc-sim: setup
 
 # Vivado is not installed by `make setup`: it must be on PATH (settings64.sh).
 VIVADO   ?= vivado
+BOARD    ?=
 BD_ARGS  ?=
 OOC_ARGS ?=
 VIVADO_BATCH = $(VIVADO) -mode batch -nojournal -nolog
@@ -134,8 +135,12 @@ check-vivado:
 vivado-ip: check-vivado
 	$(VIVADO_BATCH) -source vivado/package_ip.tcl
 
-vivado-bd: vivado-ip
-	$(VIVADO_BATCH) -source vivado/create_bd_zc7z20.tcl $(if $(BD_ARGS),-tclargs $(BD_ARGS))
+# BOARD is required (no default: Vivado 2022.1+ has ZC702's board files but not ZedBoard's).
+vivado-bd: $(if $(BOARD),,vivado-bd-needs-board) vivado-ip
+	$(VIVADO_BATCH) -source vivado/create_bd_zc7z20.tcl -tclargs --board $(BOARD) $(BD_ARGS)
+
+vivado-bd-needs-board:
+	@echo "make: vivado-bd needs BOARD=zedboard, BOARD=zc702 or BOARD=none (see vivado/README.md)"; exit 1
 
 vivado-ooc: check-vivado
 	$(VIVADO_BATCH) -source vivado/synth_ooc.tcl $(if $(OOC_ARGS),-tclargs $(OOC_ARGS))

@@ -7,6 +7,7 @@
 - `timing`: the seeded idle and stall patterns both engines draw;
 - `ghdl`: GHDL build and cocotb run (shared with the testbenches);
 - `driver`: cocotbext-axi drivers of the top's ports and record decoding;
+- `records`: the corner record stream decoded into frames (the twin of sw/fastnms.c);
 - `regs`: the register map and record format (generated from rtl/top/fastnms_regs.toml).
 
 It needs the source tree (rtl/), GHDL, and Verilator with g++ for the fast engine; it

@@ -29,21 +29,31 @@ from cocotbext.axi import (
 )
 
 from . import regs
+from .axi_protocol import AxiProtocolChecker
 
 PERIOD_NS = 10
 Record = tuple[int, int, int]
 
 
+def record_words(frame: AxiStreamFrame) -> list[int]:
+    """The 64-bit records of one received corner frame (the sink gets 8 byte lanes:
+    m_axis_corners has TKEEP, and a byte with TKEEP low would be missing here)."""
+    data = bytes(frame.tdata)
+    assert len(data) % 8 == 0, f"a corner frame of {len(data)} bytes (TKEEP not all ones?)"
+    return [int.from_bytes(data[i : i + 8], "little") for i in range(0, len(data), 8)]
+
+
 def decode(frame: AxiStreamFrame) -> tuple[list[Record], list[int]]:
     """The records (x, y, score) of one received corner frame and their flags
-    (EMPTY | LAST << 1 | ABORTED << 2)."""
+    (EMPTY | LAST << 1 | ABORTED << 2 | OVERFLOW << 3)."""
     records, flags = [], []
-    for word in frame.tdata:
+    for word in record_words(frame):
         records.append((regs.REC_X.get(word), regs.REC_Y.get(word), regs.REC_SCORE.get(word)))
         flags.append(
             regs.REC_EMPTY.get(word)
             | regs.REC_LAST.get(word) << 1
             | regs.REC_ABORTED.get(word) << 2
+            | regs.REC_OVERFLOW.get(word) << 3
         )
     return records, flags
 
@@ -95,11 +105,7 @@ class AxiTop:
             AxiStreamBus.from_prefix(dut, "s_axis_video"), dut.aclk, dut.aresetn, False
         )
         self.sink = AxiStreamSink(
-            AxiStreamBus.from_prefix(dut, "m_axis_corners"),
-            dut.aclk,
-            dut.aresetn,
-            False,
-            byte_lanes=1,
+            AxiStreamBus.from_prefix(dut, "m_axis_corners"), dut.aclk, dut.aresetn, False
         )
         self.score_sink = None
         if self.score_video:
@@ -134,6 +140,8 @@ class AxiTop:
         await Timer(1, "ns")
         cocotb.start_soon(Clock(dut.aclk, PERIOD_NS, unit="ns").start())
         cocotb.start_soon(top._monitor())
+        top.protocol = AxiProtocolChecker(dut, top.score_video)
+        top.protocol.start()
         return top
 
     def set_idle(self, idle: float) -> None:
@@ -196,6 +204,10 @@ class AxiTop:
         await self.write(regs.WIDTH, width)
         await self.write(regs.HEIGHT, height)
         await self.write(regs.THRESHOLD, threshold)
+
+    async def soft_reset(self) -> None:
+        """CMD.SOFT_RESET with its KEY (0x5A in bits 31:24)."""
+        await self.write(regs.CMD, 0x5A << regs.CMD_KEY.lsb | regs.CMD_SOFT_RESET.mask)
 
     async def status(self) -> int:
         return await self.read(regs.STATUS)

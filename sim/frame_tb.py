@@ -17,6 +17,7 @@ SIM_GENERICS (the top's generics).
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 from pathlib import Path
@@ -28,6 +29,7 @@ from cocotb.triggers import ClockCycles, Event, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiStreamBus, AxiStreamSource
 from fastnms.sim import regs
+from fastnms.sim.axi_protocol import AxiProtocolChecker
 from fastnms.sim.driver import PERIOD_NS, video_lines
 from fastnms.sim.timing import Pattern, Timing
 
@@ -141,6 +143,8 @@ async def run_frames(dut):
     axil.read_if.log.setLevel("WARNING")
     await Timer(1, "ns")
     cocotb.start_soon(Clock(dut.aclk, PERIOD_NS, unit="ns").start())
+    generics = ast.literal_eval(os.environ.get("SIM_GENERICS", "{}"))
+    AxiProtocolChecker(dut, bool(generics.get("SCORE_VIDEO", False))).start()
     await ClockCycles(dut.aclk, 8)
     dut.aresetn.value = 1
     cocotb.start_soon(run.clock_edges())

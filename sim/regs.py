@@ -32,9 +32,9 @@ class Register(NamedTuple):
     fields: dict[str, Field]
 
 
-ADDR_WIDTH = 8
+ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 1, 0)
+MAP_VERSION = (0, 2, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,14 +44,14 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 1)
+VERSION_MINOR = Field(8, 8, "ro", 2)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
-# CTRL: Control.
+# CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
 CTRL = 0x08
 CTRL_ENABLE = Field(0, 1, "rw", 1)
-CTRL_SOFT_RESET = Field(1, 1, "w1p", 0)
 CTRL_IRQ_ENABLE = Field(2, 1, "rw", 0)
+CTRL_LIVE = Field(3, 1, "rw", 0)
 
 # STATUS: Status; the sticky bits are cleared by writing 1.
 STATUS = 0x0C
@@ -101,6 +101,23 @@ BUILD = 0x2C
 BUILD_FIFO_DEPTH = Field(0, 16, "ro", "CORNER_FIFO_DEPTH")
 BUILD_SCORE_VIDEO = Field(16, 1, "ro", "SCORE_VIDEO")
 
+# CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits 31:24,
+# strobed), so a read-modify-write or a stray write cannot trigger one.
+CMD = 0x30
+CMD_SOFT_RESET = Field(0, 1, "w1p", 0)
+CMD_KEY = Field(24, 8, "wo", 0)
+
+# DROPPED: Records dropped because the corner FIFO was full with CTRL.LIVE = 1, since reset
+# (wraps). A frame's last record counts too: that frame then has no LAST beat and the next LAST
+# record carries OVERFLOW.
+DROPPED = 0x34
+DROPPED_VALUE = Field(0, 32, "ro", 0)
+
+# INPUT_STALLS: Clocks in which s_axis_video_tvalid was 1 and s_axis_video_tready 0 (a pixel
+# offered and refused), since reset (wraps).
+INPUT_STALLS = 0x38
+INPUT_STALLS_VALUE = Field(0, 32, "ro", 0)
+
 # The corner record: tdata of m_axis_corners, 64 bits.
 REC_X = Field(0, 16, "ro", 0)
 REC_Y = Field(16, 16, "ro", 0)
@@ -108,6 +125,7 @@ REC_SCORE = Field(32, 16, "ro", 0)
 REC_EMPTY = Field(48, 1, "ro", 0)
 REC_LAST = Field(49, 1, "ro", 0)
 REC_ABORTED = Field(50, 1, "ro", 0)
+REC_OVERFLOW = Field(51, 1, "ro", 0)
 
 REGISTERS: dict[str, Register] = {
     "ID": Register(ID, {"MAGIC": ID_MAGIC}),
@@ -123,8 +141,8 @@ REGISTERS: dict[str, Register] = {
         CTRL,
         {
             "ENABLE": CTRL_ENABLE,
-            "SOFT_RESET": CTRL_SOFT_RESET,
             "IRQ_ENABLE": CTRL_IRQ_ENABLE,
+            "LIVE": CTRL_LIVE,
         },
     ),
     "STATUS": Register(
@@ -147,6 +165,9 @@ REGISTERS: dict[str, Register] = {
     "FRAME_COUNT": Register(FRAME_COUNT, {"VALUE": FRAME_COUNT_VALUE}),
     "MAX_SIZE": Register(MAX_SIZE, {"WIDTH": MAX_SIZE_WIDTH, "HEIGHT": MAX_SIZE_HEIGHT}),
     "BUILD": Register(BUILD, {"FIFO_DEPTH": BUILD_FIFO_DEPTH, "SCORE_VIDEO": BUILD_SCORE_VIDEO}),
+    "CMD": Register(CMD, {"SOFT_RESET": CMD_SOFT_RESET, "KEY": CMD_KEY}),
+    "DROPPED": Register(DROPPED, {"VALUE": DROPPED_VALUE}),
+    "INPUT_STALLS": Register(INPUT_STALLS, {"VALUE": INPUT_STALLS_VALUE}),
 }
 
 

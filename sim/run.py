@@ -48,6 +48,7 @@ class FrameResult:
     height: int
     threshold: int
     records: np.ndarray  # (N, 3) int64: x, y, score, sorted by y then x
+    words: np.ndarray  # uint64: the frame's raw records (tdata of m_axis_corners), in output order
     cycles: int  # the frame's first input beat accepted to its last record, inclusive
     input_stalls: int  # clocks with video tvalid high and tready low, during this frame
     # The clock numbers of the frame's first and last input beats and of its last
@@ -139,6 +140,7 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
             height=img.shape[0],
             threshold=threshold,
             records=decode_words(raw.words),
+            words=raw.words,
             cycles=raw.last_record - raw.first_pixel + 1,
             input_stalls=raw.input_stalls,
             first_pixel=raw.first_pixel,

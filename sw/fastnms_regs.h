@@ -3,12 +3,12 @@
  *
  * <REG>_OFFSET: byte offset; <REG>_<FIELD>_SHIFT and _MASK (in place);
  * <REG>_<FIELD>_RESET: a constant reset value; <REG>_<FIELD>_<VALUE>: the code of
- * an enumerated value. All registers are 32 bits wide; use 32-bit accesses only.
+ * an enumerated value. All registers are 32 bits wide; byte strobes are honoured.
  */
 #ifndef FASTNMS_REGS_H
 #define FASTNMS_REGS_H
 
-#define FASTNMS_VERSION_STRING "0.1.0"
+#define FASTNMS_VERSION_STRING "0.2.0"
 
 /* ID: Identification: the constant 0x46415354 ("FAST" in ASCII). */
 #define FASTNMS_ID_OFFSET      0x00u
@@ -23,22 +23,22 @@
 #define FASTNMS_VERSION_PATCH_RESET 0x0u
 #define FASTNMS_VERSION_MINOR_SHIFT 8u
 #define FASTNMS_VERSION_MINOR_MASK  0x0000FF00u
-#define FASTNMS_VERSION_MINOR_RESET 0x1u
+#define FASTNMS_VERSION_MINOR_RESET 0x2u
 #define FASTNMS_VERSION_MAJOR_SHIFT 16u
 #define FASTNMS_VERSION_MAJOR_MASK  0x00FF0000u
 #define FASTNMS_VERSION_MAJOR_RESET 0x0u
 
-/* CTRL: Control. */
+/* CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.) */
 #define FASTNMS_CTRL_OFFSET           0x08u
 #define FASTNMS_CTRL_ENABLE_SHIFT     0u
 #define FASTNMS_CTRL_ENABLE_MASK      0x00000001u
 #define FASTNMS_CTRL_ENABLE_RESET     0x1u
-#define FASTNMS_CTRL_SOFT_RESET_SHIFT 1u
-#define FASTNMS_CTRL_SOFT_RESET_MASK  0x00000002u
-#define FASTNMS_CTRL_SOFT_RESET_RESET 0x0u
 #define FASTNMS_CTRL_IRQ_ENABLE_SHIFT 2u
 #define FASTNMS_CTRL_IRQ_ENABLE_MASK  0x00000004u
 #define FASTNMS_CTRL_IRQ_ENABLE_RESET 0x0u
+#define FASTNMS_CTRL_LIVE_SHIFT       3u
+#define FASTNMS_CTRL_LIVE_MASK        0x00000008u
+#define FASTNMS_CTRL_LIVE_RESET       0x0u
 
 /* STATUS: Status; the sticky bits are cleared by writing 1. */
 #define FASTNMS_STATUS_OFFSET            0x0Cu
@@ -120,18 +120,45 @@
 #define FASTNMS_BUILD_SCORE_VIDEO_SHIFT 16u
 #define FASTNMS_BUILD_SCORE_VIDEO_MASK  0x00010000u
 
+/* CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits */
+/* 31:24, strobed), so a read-modify-write or a stray write cannot trigger one. */
+#define FASTNMS_CMD_OFFSET           0x30u
+#define FASTNMS_CMD_SOFT_RESET_SHIFT 0u
+#define FASTNMS_CMD_SOFT_RESET_MASK  0x00000001u
+#define FASTNMS_CMD_SOFT_RESET_RESET 0x0u
+#define FASTNMS_CMD_KEY_SHIFT        24u
+#define FASTNMS_CMD_KEY_MASK         0xFF000000u
+#define FASTNMS_CMD_KEY_RESET        0x0u
+
+/* DROPPED: Records dropped because the corner FIFO was full with CTRL.LIVE = 1, since reset */
+/* (wraps). A frame's last record counts too: that frame then has no LAST beat and the next */
+/* LAST record carries OVERFLOW. */
+#define FASTNMS_DROPPED_OFFSET      0x34u
+#define FASTNMS_DROPPED_VALUE_SHIFT 0u
+#define FASTNMS_DROPPED_VALUE_MASK  0xFFFFFFFFu
+#define FASTNMS_DROPPED_VALUE_RESET 0x0u
+
+/* INPUT_STALLS: Clocks in which s_axis_video_tvalid was 1 and s_axis_video_tready 0 (a pixel */
+/* offered and refused), since reset (wraps). */
+#define FASTNMS_INPUT_STALLS_OFFSET      0x38u
+#define FASTNMS_INPUT_STALLS_VALUE_SHIFT 0u
+#define FASTNMS_INPUT_STALLS_VALUE_MASK  0xFFFFFFFFu
+#define FASTNMS_INPUT_STALLS_VALUE_RESET 0x0u
+
 /* The corner record: tdata of m_axis_corners, 64 bits. */
-#define FASTNMS_REC_X_SHIFT       0u
-#define FASTNMS_REC_X_MASK        0x000000000000FFFFull
-#define FASTNMS_REC_Y_SHIFT       16u
-#define FASTNMS_REC_Y_MASK        0x00000000FFFF0000ull
-#define FASTNMS_REC_SCORE_SHIFT   32u
-#define FASTNMS_REC_SCORE_MASK    0x0000FFFF00000000ull
-#define FASTNMS_REC_EMPTY_SHIFT   48u
-#define FASTNMS_REC_EMPTY_MASK    0x0001000000000000ull
-#define FASTNMS_REC_LAST_SHIFT    49u
-#define FASTNMS_REC_LAST_MASK     0x0002000000000000ull
-#define FASTNMS_REC_ABORTED_SHIFT 50u
-#define FASTNMS_REC_ABORTED_MASK  0x0004000000000000ull
+#define FASTNMS_REC_X_SHIFT        0u
+#define FASTNMS_REC_X_MASK         0x000000000000FFFFull
+#define FASTNMS_REC_Y_SHIFT        16u
+#define FASTNMS_REC_Y_MASK         0x00000000FFFF0000ull
+#define FASTNMS_REC_SCORE_SHIFT    32u
+#define FASTNMS_REC_SCORE_MASK     0x0000FFFF00000000ull
+#define FASTNMS_REC_EMPTY_SHIFT    48u
+#define FASTNMS_REC_EMPTY_MASK     0x0001000000000000ull
+#define FASTNMS_REC_LAST_SHIFT     49u
+#define FASTNMS_REC_LAST_MASK      0x0002000000000000ull
+#define FASTNMS_REC_ABORTED_SHIFT  50u
+#define FASTNMS_REC_ABORTED_MASK   0x0004000000000000ull
+#define FASTNMS_REC_OVERFLOW_SHIFT 51u
+#define FASTNMS_REC_OVERFLOW_MASK  0x0008000000000000ull
 
 #endif /* FASTNMS_REGS_H */

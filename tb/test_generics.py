@@ -25,6 +25,7 @@ ILLEGAL = {
     "fastnms_nms_region": ({"MAX_WIDTH": 2}, "MAX_WIDTH must be at least 3"),
     "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
     "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
+    "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),
     "fastnms_corner_pack": ({"X_BITS": 30, "Y_BITS": 30}, "X_BITS + Y_BITS + SCORE_BITS + 2"),
     "fastnms_video_check": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     "fastnms_video_gate": ({"SETTLE": 2}, "SETTLE must be at least 3"),

@@ -4,22 +4,29 @@
 #   fastnms_axi --m_axis_corners (64-bit records)--> AXI DMA (S2MM) --HP0--> DDR
 #   PS GP0 --> SmartConnect --> fastnms s_axi_ctrl, VDMA and DMA registers
 #   fastnms interrupt, DMA s2mm_introut, VDMA mm2s_introut --> xlconcat --> IRQ_F2P
-#   everything on FCLK_CLK0 (150 MHz requested), one proc_sys_reset
+#   everything on FCLK_CLK0 (142.857 MHz: the IO PLL's 1000 MHz / 7), one
+#   proc_sys_reset
 #
 #   vivado -mode batch -nojournal -nolog -source vivado/package_ip.tcl
 #   vivado -mode batch -nojournal -nolog -source vivado/create_bd_zc7z20.tcl \
-#          [-tclargs [options]]
+#          -tclargs --board zedboard|zc702|none [options]
 #
 # Options (after -tclargs):
+#   --board NAME     required: zedboard, zc702 or none. With a board, the PS
+#                    takes the board preset (DDR, MIO) of the newest installed
+#                    version of that board's files, and a board without
+#                    installed files is an error (Vivado 2022.1 and later ship
+#                    ZC702's board files but not ZedBoard's: install Avnet's,
+#                    github.com/Avnet/bdf, from the Vivado Store or by
+#                    set_param board.repoPaths). With none, only the DDR part
+#                    is set (ZedBoard's): fine for synthesis and timing
+#                    figures, not for booting a board.
 #   --out DIR        project directory (default build/vivado/zc7z20)
 #   --ip-repo DIR    the IP repository of package_ip.tcl (default build/vivado/ip)
-#   --board NAME     auto (default: ZedBoard, else ZC702 board files, else none),
-#                    zedboard, zc702 or none. With a board, the PS takes the
-#                    board preset (DDR, MIO); with none, only the DDR part is
-#                    set: fine for synthesis and timing figures, not for booting
-#                    a board (install the board files for that).
-#   --fclk-mhz F     requested FCLK_CLK0 in MHz (default 150); the PS picks the
-#                    nearest frequency its dividers give, printed at the end.
+#   --fclk-mhz F     FCLK_CLK0 in MHz (default 142.857143): must be the IO PLL's
+#                    1000 MHz divided by an integer (an error otherwise, with
+#                    the nearest values), and the script stops if the PS
+#                    reports another frequency.
 #   --score S, --nms N   the IP's SCORE and NMS generics (default opencv, 3x3)
 #   --max-width W, --max-height H   (default 1920, 1080)
 #   --impl           also run synthesis, implementation and the bitstream,
@@ -37,10 +44,10 @@
 source [file join [file dirname [info script]] fastnms_common.tcl]
 
 set opts [fastnms::parse_args $argv [dict create \
+    --board      {} \
     --out        [fastnms::path build vivado zc7z20] \
     --ip-repo    [fastnms::path build vivado ip] \
-    --board      auto \
-    --fclk-mhz   150 \
+    --fclk-mhz   [fastnms::fclk_mhz] \
     --score      opencv \
     --nms        3x3 \
     --max-width  1920 \
@@ -49,17 +56,20 @@ set opts [fastnms::parse_args $argv [dict create \
 ] {--impl}]
 set out_dir  [file normalize [dict get $opts --out]]
 set ip_repo  [file normalize [dict get $opts --ip-repo]]
-set fclk_mhz [dict get $opts --fclk-mhz]
 set board    [dict get $opts --board]
 
+if {$board eq ""} {
+    error "create_bd: --board is required: zedboard, zc702 or none (make vivado-bd BOARD=...)"
+}
+if {$board ni {zedboard zc702 none}} {
+    error "create_bd: --board must be zedboard, zc702 or none, not '$board'"
+}
+if {[catch {fastnms::fclk_setting [dict get $opts --fclk-mhz]} fclk]} {
+    error "create_bd: --fclk-mhz: $fclk"
+}
+set fclk_mhz [dict get $fclk mhz]
 if {![file exists [file join $ip_repo component.xml]]} {
     error "create_bd: no component.xml in $ip_repo: run vivado/package_ip.tcl first"
-}
-if {$board ni {auto zedboard zc702 none}} {
-    error "create_bd: --board must be auto, zedboard, zc702 or none, not '$board'"
-}
-if {![string is double -strict $fclk_mhz] || $fclk_mhz <= 0} {
-    error "create_bd: --fclk-mhz must be a frequency in MHz, not '$fclk_mhz'"
 }
 
 # ---- project ----------------------------------------------------------------
@@ -68,33 +78,34 @@ set design  fastnms_system
 file mkdir $out_dir
 create_project -force $project $out_dir -part $fastnms::part
 
-# The newest installed board part of the first board found, or "".
-proc find_board_part {board} {
-    set patterns [dict create zedboard {*:zedboard:* *:zed:*} zc702 {*:zc702:*}]
-    set candidates [expr {$board eq "auto" ? {zedboard zc702} : [list $board]}]
-    foreach name $candidates {
-        foreach pattern [dict get $patterns $name] {
-            set parts [get_board_parts -quiet -latest_file_version $pattern]
-            if {[llength $parts]} {
-                return [lindex [lsort $parts] end]
+# The board parts of `board` (ZedBoard's are avnet.com:zedboard:part0:X.Y
+# from Avnet, em.avnet.com:zed:part0:X.Y in Vivado releases before 2022.1,
+# digilentinc.com:zedboard:part0:X.Y from Digilent; ZC702's
+# xilinx.com:zc702:part0:X.Y), newest file version of each.
+proc fastnms::board_parts {board} {
+    set patterns [dict create zedboard {*:zedboard:part0:* *:zed:part0:*} zc702 {*:zc702:part0:*}]
+    set parts {}
+    foreach pattern [dict get $patterns $board] {
+        foreach part [get_board_parts -quiet -latest_file_version $pattern] {
+            if {$part ni $parts} {
+                lappend parts $part
             }
         }
     }
-    return ""
+    return $parts
 }
 
 set board_part ""
 if {$board ne "none"} {
-    set board_part [find_board_part $board]
-    if {$board_part eq ""} {
-        if {$board ne "auto"} {
-            error "create_bd: no board files for $board (install them, or use --board none)"
-        }
-        puts "create_bd: WARNING: no ZedBoard or ZC702 board files; the PS gets no board preset"
-    } else {
-        set_property board_part $board_part [current_project]
-        puts "create_bd: board part $board_part"
+    set parts [fastnms::board_parts $board]
+    if {![llength $parts]} {
+        error "create_bd: no board files for $board in this Vivado (get_board_parts finds\
+            none): Vivado 2022.1 and later ship ZC702's but not ZedBoard's; install\
+            Avnet's (github.com/Avnet/bdf, or the Vivado Store), or run with --board none"
     }
+    set board_part [fastnms::latest_board_part $parts]
+    set_property board_part $board_part [current_project]
+    puts "create_bd: board part $board_part (of: [join $parts {, }])"
 }
 
 set_property ip_repo_paths [list $ip_repo] [current_project]
@@ -116,16 +127,29 @@ if {$board_part eq ""} {
     # Board trace delays and MIO stay at their defaults.
     set_property CONFIG.PCW_UIPARAM_DDR_PARTNO {MT41K128M16 JT-125} $ps
 }
+# FCLK_CLK0 from the IO PLL (1000 MHz with both boards' presets) through a
+# global buffer; the PS computes the two dividers from the frequency.
 set_property -dict [list \
     CONFIG.PCW_USE_M_AXI_GP0             {1} \
     CONFIG.PCW_USE_S_AXI_HP0             {1} \
     CONFIG.PCW_S_AXI_HP0_DATA_WIDTH      {64} \
     CONFIG.PCW_EN_CLK0_PORT              {1} \
     CONFIG.PCW_EN_RST0_PORT              {1} \
+    CONFIG.PCW_FCLK0_PERIPHERAL_CLKSRC   {IO PLL} \
     CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ  $fclk_mhz \
+    CONFIG.PCW_FCLK_CLK0_BUF             {TRUE} \
     CONFIG.PCW_USE_FABRIC_INTERRUPT      {1} \
     CONFIG.PCW_IRQ_F2P_INTR              {1} \
 ] $ps
+# What the PS gives, read back at once: another frequency (an IO PLL not at
+# 1000 MHz in some preset) would make every timing figure wrong.
+set fclk_actual [get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ $ps]
+if {![string is double -strict $fclk_actual] || abs($fclk_actual - $fclk_mhz) > 0.001} {
+    error "create_bd: FCLK_CLK0: requested $fclk_mhz MHz, the PS gives '$fclk_actual' MHz\
+        (PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ): check the IO PLL of the board preset"
+}
+puts "create_bd: FCLK_CLK0 $fclk_actual MHz (IO PLL [format %g $fastnms::io_pll_mhz] MHz\
+    / [dict get $fclk divide])"
 
 # ---- the IP, the DMAs, the interconnects --------------------------------------
 set fastnms [create_bd_cell -type ip -vlnv [fastnms::vlnv] fastnms]
@@ -154,8 +178,10 @@ set_property -dict [list \
 ] $vdma
 
 # Corner records to DDR: S2MM only, simple (register) mode, one transfer per
-# frame (tlast on the frame's last record); 23 length bits allow 8 MiB,
-# one million records.
+# frame (tlast on the frame's last record, tkeep all ones). The length
+# register has 26 bits, the maximum (PG021, S2MM_LENGTH): 64 MiB - 1 per
+# transfer. --nms none at 1920x1080 can emit up to about 2 M records of 8
+# bytes, 16 MB; 23 bits (8 MiB) would not do.
 set dma [create_bd_cell -type ip -vlnv xilinx.com:ip:axi_dma dma]
 set_property -dict [list \
     CONFIG.c_include_sg                {0} \
@@ -165,7 +191,7 @@ set_property -dict [list \
     CONFIG.c_s_axis_s2mm_tdata_width   {64} \
     CONFIG.c_m_axi_s2mm_data_width     {64} \
     CONFIG.c_s2mm_burst_size           {16} \
-    CONFIG.c_sg_length_width           {23} \
+    CONFIG.c_sg_length_width           {26} \
 ] $dma
 
 set ctrl_smc [create_bd_cell -type ip -vlnv xilinx.com:ip:smartconnect ctrl_smc]
@@ -178,12 +204,14 @@ set irq [create_bd_cell -type ip -vlnv xilinx.com:ip:xlconcat irq_concat]
 set_property CONFIG.NUM_PORTS {3} $irq
 
 # ---- connections --------------------------------------------------------------
-proc connect_intf {from to} {
+# (In namespace fastnms: a global proc could hide a Vivado command, as a
+# `connect_net` proc once hid Vivado's own connect_net.)
+proc fastnms::connect_intf {from to} {
     connect_bd_intf_net [get_bd_intf_pins $from] [get_bd_intf_pins $to]
 }
 
 # One net from `driver` to every pin of `loads`.
-proc connect_net {driver loads} {
+proc fastnms::connect_pins {driver loads} {
     set pins [list [get_bd_pins $driver]]
     foreach load $loads {
         lappend pins [get_bd_pins $load]
@@ -191,31 +219,31 @@ proc connect_net {driver loads} {
     connect_bd_net {*}$pins
 }
 
-connect_intf ps7/M_AXI_GP0          ctrl_smc/S00_AXI
-connect_intf ctrl_smc/M00_AXI       fastnms/s_axi_ctrl
-connect_intf ctrl_smc/M01_AXI       vdma/S_AXI_LITE
-connect_intf ctrl_smc/M02_AXI       dma/S_AXI_LITE
-connect_intf vdma/M_AXI_MM2S        mem_smc/S00_AXI
-connect_intf dma/M_AXI_S2MM         mem_smc/S01_AXI
-connect_intf mem_smc/M00_AXI        ps7/S_AXI_HP0
-connect_intf vdma/M_AXIS_MM2S       fastnms/s_axis_video
-connect_intf fastnms/m_axis_corners dma/S_AXIS_S2MM
+fastnms::connect_intf ps7/M_AXI_GP0          ctrl_smc/S00_AXI
+fastnms::connect_intf ctrl_smc/M00_AXI       fastnms/s_axi_ctrl
+fastnms::connect_intf ctrl_smc/M01_AXI       vdma/S_AXI_LITE
+fastnms::connect_intf ctrl_smc/M02_AXI       dma/S_AXI_LITE
+fastnms::connect_intf vdma/M_AXI_MM2S        mem_smc/S00_AXI
+fastnms::connect_intf dma/M_AXI_S2MM         mem_smc/S01_AXI
+fastnms::connect_intf mem_smc/M00_AXI        ps7/S_AXI_HP0
+fastnms::connect_intf vdma/M_AXIS_MM2S       fastnms/s_axis_video
+fastnms::connect_intf fastnms/m_axis_corners dma/S_AXIS_S2MM
 
-connect_net ps7/FCLK_CLK0 {
+fastnms::connect_pins ps7/FCLK_CLK0 {
     ps7/M_AXI_GP0_ACLK ps7/S_AXI_HP0_ACLK
     ctrl_smc/aclk mem_smc/aclk rst/slowest_sync_clk
     fastnms/aclk
     vdma/s_axi_lite_aclk vdma/m_axi_mm2s_aclk vdma/m_axis_mm2s_aclk
     dma/s_axi_lite_aclk dma/m_axi_s2mm_aclk
 }
-connect_net ps7/FCLK_RESET0_N     {rst/ext_reset_in}
-connect_net rst/peripheral_aresetn {fastnms/aresetn vdma/axi_resetn dma/axi_resetn}
-connect_net rst/interconnect_aresetn {ctrl_smc/aresetn mem_smc/aresetn}
+fastnms::connect_pins ps7/FCLK_RESET0_N     {rst/ext_reset_in}
+fastnms::connect_pins rst/peripheral_aresetn {fastnms/aresetn vdma/axi_resetn dma/axi_resetn}
+fastnms::connect_pins rst/interconnect_aresetn {ctrl_smc/aresetn mem_smc/aresetn}
 
-connect_net fastnms/interrupt  {irq_concat/In0}
-connect_net dma/s2mm_introut   {irq_concat/In1}
-connect_net vdma/mm2s_introut  {irq_concat/In2}
-connect_net irq_concat/dout    {ps7/IRQ_F2P}
+fastnms::connect_pins fastnms/interrupt  {irq_concat/In0}
+fastnms::connect_pins dma/s2mm_introut   {irq_concat/In1}
+fastnms::connect_pins vdma/mm2s_introut  {irq_concat/In2}
+fastnms::connect_pins irq_concat/dout    {ps7/IRQ_F2P}
 
 # ---- addresses, checks, wrapper ------------------------------------------------
 assign_bd_address
@@ -238,8 +266,6 @@ add_files -norecurse $wrapper
 set_property top "${design}_wrapper" [current_fileset]
 update_compile_order -fileset sources_1
 
-set fclk_actual [get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ $ps]
-puts "create_bd: FCLK_CLK0 requested $fclk_mhz MHz, the PS gives $fclk_actual MHz"
 puts "create_bd: [file join $out_dir $project.xpr], addresses in [file join $out_dir address_map.txt]"
 
 # ---- optional: synthesis, implementation, bitstream ---------------------------------

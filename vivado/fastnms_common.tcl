@@ -20,6 +20,17 @@ namespace eval fastnms {
     # ZedBoard and ZC702 both carry this Zynq-7020.
     variable part xc7z020clg484-1
 
+    # FCLK_CLK0, the one clock of the block design (and of the out-of-context
+    # constraint): the PS's IO PLL divided by two 6-bit dividers (UG585,
+    # "PL Clocks": FPGA0_CLK_CTRL DIVISOR0 and DIVISOR1, 1 to 63 each). With
+    # the 33.333 MHz PS_CLK of both boards the IO PLL runs at 1000 MHz (the
+    # presets' PCW_IOPLL_CTRL_FBDIV 30), so 150 MHz is out of reach: the PS
+    # would give 142.857 MHz (1000 / 7) for a 150 MHz request. The design
+    # asks for 1000 / 7 on purpose, and constraints/fastnms_ooc.xdc uses its
+    # period, 7.000 ns.
+    variable io_pll_mhz  1000.0
+    variable fclk_divide 7
+
     # RTL folders, lowest layer first.
     variable areas {common fast nms core top}
 
@@ -184,6 +195,96 @@ proc fastnms::ip_wrapper {top_file top_entity name} {
         "" \
         "end architecture wrapper;" \
         ""] \n]
+}
+
+# FCLK_CLK0 for a request of `mhz` MHz: a dict with mhz (io_pll_mhz / N, to
+# 6 decimals), divide (N), divisor0 and divisor1 (N = divisor0 * divisor1,
+# each 1 to 63). An error when no N gives `mhz` within 1 kHz: the PS would
+# quietly give another frequency, and every timing figure would be for a
+# clock the board does not have.
+proc fastnms::fclk_setting {mhz} {
+    variable io_pll_mhz
+    if {![string is double -strict $mhz] || $mhz <= 0} {
+        error "fastnms: FCLK_CLK0 must be a frequency in MHz, not '$mhz'"
+    }
+    set n [expr {max(1, round($io_pll_mhz / $mhz))}]
+    set candidates {}
+    foreach divide [list [expr {$n - 1}] $n [expr {$n + 1}]] {
+        if {$divide < 1} {
+            continue
+        }
+        set pair [fastnms::divisor_pair $divide]
+        if {[llength $pair]} {
+            lappend candidates $divide $pair
+        }
+    }
+    foreach {divide pair} $candidates {
+        set actual [expr {$io_pll_mhz / $divide}]
+        if {abs($actual - $mhz) <= 0.001} {
+            return [dict create mhz [format %.6f $actual] divide $divide \
+                divisor0 [lindex $pair 0] divisor1 [lindex $pair 1]]
+        }
+    }
+    set nearest {}
+    foreach {divide pair} $candidates {
+        lappend nearest "[format %.6f [expr {$io_pll_mhz / $divide}]] (/$divide)"
+    }
+    error "fastnms: FCLK_CLK0 of $mhz MHz is not [format %g $io_pll_mhz] MHz (IO PLL) divided\
+        by an integer: the PS would give another frequency; nearest: [join $nearest {, }]"
+}
+
+# Two 6-bit dividers (1 to 63) whose product is `divide`, the first as small
+# as possible; {} when there are none.
+proc fastnms::divisor_pair {divide} {
+    for {set d0 1} {$d0 <= 63} {incr d0} {
+        if {$divide % $d0 == 0 && $divide / $d0 <= 63} {
+            return [list $d0 [expr {$divide / $d0}]]
+        }
+    }
+    return {}
+}
+
+# The default FCLK_CLK0 in MHz (io_pll_mhz / fclk_divide, 6 decimals).
+proc fastnms::fclk_mhz {} {
+    variable io_pll_mhz
+    variable fclk_divide
+    return [format %.6f [expr {$io_pll_mhz / $fclk_divide}]]
+}
+
+# The board part of the newest version among `parts` (vendor:board:part0:X.Y
+# names, as get_board_parts returns them): versions compared number by number
+# (1.10 after 1.4), not as strings, and not sorted by vendor. {} for none.
+proc fastnms::latest_board_part {parts} {
+    set best {}
+    set best_version {}
+    foreach part $parts {
+        set version [split [lindex [split $part :] end] .]
+        if {$best eq "" || [fastnms::version_compare $version $best_version] > 0} {
+            set best $part
+            set best_version $version
+        }
+    }
+    return $best
+}
+
+# -1, 0 or 1 as version list `a` is older, the same or newer than `b`; a
+# missing or non-numeric field counts as 0.
+proc fastnms::version_compare {a b} {
+    set n [expr {max([llength $a], [llength $b])}]
+    for {set i 0} {$i < $n} {incr i} {
+        set x [lindex $a $i]
+        set y [lindex $b $i]
+        if {![string is integer -strict $x]} {
+            set x 0
+        }
+        if {![string is integer -strict $y]} {
+            set y 0
+        }
+        if {$x != $y} {
+            return [expr {$x < $y ? -1 : 1}]
+        }
+    }
+    return 0
 }
 
 # The clock period (ns) of the out-of-context constraint file.

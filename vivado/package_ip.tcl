@@ -93,12 +93,16 @@ foreach group_name {xilinx_anylanguagesynthesis xilinx_anylanguagebehavioralsimu
 }
 
 # ---- bus interfaces ---------------------------------------------------------
-# The X_INTERFACE_INFO attributes of fastnms_axi (copied into the wrapper) name
-# them; the packager takes them from there. Infer them from the port names if
-# any is missing.
+# The X_INTERFACE_INFO and X_INTERFACE_PARAMETER attributes of fastnms_axi
+# (copied into the wrapper) define them, parameters included; the packager
+# takes them from there (flows/vivado_check/xinterface.py checks the
+# attributes against the ports). Only if one is missing are they inferred
+# from the port names, a fallback that loses the parameters the attributes
+# carry: the log says which path was taken, and the parameters the block
+# design needs are checked below on either path.
 set interfaces {s_axis_video m_axis_corners m_axis_score s_axi_ctrl aclk aresetn interrupt}
 
-proc missing_interfaces {core names} {
+proc fastnms::missing_interfaces {core names} {
     set missing {}
     foreach busif $names {
         if {![llength [ipx::get_bus_interfaces -quiet $busif -of_objects $core]]} {
@@ -108,8 +112,12 @@ proc missing_interfaces {core names} {
     return $missing
 }
 
-if {[llength [missing_interfaces $core $interfaces]]} {
-    puts "package_ip: bus interfaces [missing_interfaces $core $interfaces] not found; inferring them"
+set missing [fastnms::missing_interfaces $core $interfaces]
+if {![llength $missing]} {
+    puts "package_ip: bus interfaces from the X_INTERFACE attributes: [join $interfaces {, }]"
+} else {
+    puts "package_ip: WARNING: bus interfaces [join $missing {, }] not in the packaged\
+        component: INFERRING them from the port names (ipx::infer_bus_interfaces)"
     foreach definition {
         xilinx.com:interface:axis_rtl:1.0
         xilinx.com:interface:aximm_rtl:1.0
@@ -119,11 +127,27 @@ if {[llength [missing_interfaces $core $interfaces]]} {
     } {
         ipx::infer_bus_interfaces $definition $core
     }
-    set missing [missing_interfaces $core $interfaces]
+    set missing [fastnms::missing_interfaces $core $interfaces]
     if {[llength $missing]} {
         error "package_ip: no bus interface $missing on $fastnms::top (check its X_INTERFACE_INFO attributes)"
     }
+    puts "package_ip: bus interfaces inferred: [join $interfaces {, }]"
 }
+
+# The bus parameters the block design relies on and inference may not set:
+# an error, not a warning, when one is missing or differs.
+proc fastnms::require_bus_parameter {core busif name value} {
+    set param [ipx::get_bus_parameters -quiet $name \
+        -of_objects [ipx::get_bus_interfaces $busif -of_objects $core]]
+    set actual [expr {[llength $param] ? [get_property VALUE $param] : "(missing)"}]
+    if {$actual ne $value} {
+        error "package_ip: bus interface $busif: $name is $actual, must be $value\
+            (the X_INTERFACE_PARAMETER attributes of $fastnms::top did not reach the component)"
+    }
+}
+fastnms::require_bus_parameter $core aresetn      POLARITY    ACTIVE_LOW
+fastnms::require_bus_parameter $core s_axis_video TUSER_WIDTH 1
+fastnms::require_bus_parameter $core m_axis_score TUSER_WIDTH 1
 
 # All four buses run on aclk.
 set aclk_busif [ipx::get_bus_interfaces aclk -of_objects $core]
@@ -138,8 +162,8 @@ foreach busif {s_axis_video m_axis_corners m_axis_score s_axi_ctrl} {
     }
 }
 
-# The AXI4-Lite register block: 8 address bits (docs/fastnms_axi.md), mapped as 4 KiB,
-# the smallest block the Zynq address map assigns.
+# The AXI4-Lite register block: 12 address bits (ADDR_WIDTH 12, docs/fastnms_axi.md),
+# 4 KiB, also the smallest block the Zynq address map assigns.
 set memory_map [ipx::get_memory_maps -quiet s_axi_ctrl -of_objects $core]
 if {![llength $memory_map]} {
     set memory_map [ipx::add_memory_map s_axi_ctrl $core]
@@ -161,45 +185,45 @@ set_property enablement_dependency {$SCORE_VIDEO} [ipx::get_ports m_axis_score_*
 set_property driver_value 1 [ipx::get_ports m_axis_score_tready -of_objects $core]
 
 # ---- customisation GUI --------------------------------------------------------
-proc gui_param {core name display_name tooltip} {
+proc fastnms::gui_param {core name display_name tooltip} {
     set spec [ipgui::get_guiparamspec -name $name -component $core]
     set_property display_name $display_name $spec
     set_property tooltip $tooltip $spec
     return [ipx::get_user_parameters $name -of_objects $core]
 }
 
-proc gui_range {core name min max} {
+proc fastnms::gui_range {core name min max} {
     set param [ipx::get_user_parameters $name -of_objects $core]
     set_property value_validation_type range_long $param
     set_property value_validation_range_minimum $min $param
     set_property value_validation_range_maximum $max $param
 }
 
-proc gui_list {core name values} {
+proc fastnms::gui_list {core name values} {
     set param [ipx::get_user_parameters $name -of_objects $core]
     set_property value_validation_type list $param
     set_property value_validation_list $values $param
     set_property widget comboBox [ipgui::get_guiparamspec -name $name -component $core]
 }
 
-gui_param $core MAX_WIDTH {Maximum frame width} \
+fastnms::gui_param $core MAX_WIDTH {Maximum frame width} \
     {Widest frame in pixels; the runtime width (register WIDTH) is 7 .. MAX_WIDTH. Sets the line-buffer size.}
-gui_range $core MAX_WIDTH 7 8192
-gui_param $core MAX_HEIGHT {Maximum frame height} \
+fastnms::gui_range $core MAX_WIDTH 7 8192
+fastnms::gui_param $core MAX_HEIGHT {Maximum frame height} \
     {Tallest frame in lines; the runtime height (register HEIGHT) is 7 .. MAX_HEIGHT.}
-gui_range $core MAX_HEIGHT 7 8192
-gui_param $core SCORE {Corner score} \
+fastnms::gui_range $core MAX_HEIGHT 7 8192
+fastnms::gui_param $core SCORE {Corner score} \
     {opencv: OpenCV's FAST response (8 bits); sad: sum of absolute differences over the threshold (12 bits).}
-gui_list $core SCORE {opencv sad}
-gui_param $core NMS {Non-maxima suppression} \
+fastnms::gui_list $core SCORE {opencv sad}
+fastnms::gui_param $core NMS {Non-maxima suppression} \
     {3x3: OpenCV's rule; none: every corner; region4 / region8: one corner per 4- or 8-connected region.}
-gui_list $core NMS {3x3 none region4 region8}
-gui_param $core SCORE_VIDEO {Score video output} \
+fastnms::gui_list $core NMS {3x3 none region4 region8}
+fastnms::gui_param $core SCORE_VIDEO {Score video output} \
     {Build m_axis_score, the per-pixel score as 8-bit video.}
 set_property widget checkBox [ipgui::get_guiparamspec -name SCORE_VIDEO -component $core]
-gui_param $core CORNER_FIFO_DEPTH {Corner FIFO depth} \
+fastnms::gui_param $core CORNER_FIFO_DEPTH {Corner FIFO depth} \
     {Corner records buffered ahead of m_axis_corners.}
-gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8192 16384}
+fastnms::gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8192 16384}
 
 # ---- save -------------------------------------------------------------------
 ipx::create_xgui_files $core

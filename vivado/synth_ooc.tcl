@@ -82,7 +82,7 @@ if {![dict get $opts --synth-only]} {
 report_timing_summary -max_paths 10 -file [file join $out_dir timing_summary.rpt]
 
 # ---- summary ----------------------------------------------------------------
-proc count_cells {filter} {
+proc fastnms::count_cells {filter} {
     return [llength [get_cells -quiet -hierarchical -filter $filter]]
 }
 
@@ -92,13 +92,13 @@ if {$wns eq ""} {
 }
 set summary [list \
     "top $top ($stage, [dict get $opts --part]) generics {[dict get $opts --generics]}" \
-    "LUT [count_cells {PRIMITIVE_GROUP == LUT}]" \
-    "FF [count_cells {PRIMITIVE_GROUP == FLOP_LATCH}]" \
-    "SRL [count_cells {REF_NAME =~ SRL*}]" \
-    "LUTRAM+SRL [count_cells {PRIMITIVE_GROUP == DMEM}]" \
-    "RAMB36 [count_cells {REF_NAME =~ RAMB36*}]" \
-    "RAMB18 [count_cells {REF_NAME =~ RAMB18*}]" \
-    "DSP [count_cells {REF_NAME =~ DSP48*}]" \
+    "LUT [fastnms::count_cells {PRIMITIVE_GROUP == LUT}]" \
+    "FF [fastnms::count_cells {PRIMITIVE_GROUP == FLOP_LATCH}]" \
+    "SRL [fastnms::count_cells {REF_NAME =~ SRL*}]" \
+    "LUTRAM+SRL [fastnms::count_cells {PRIMITIVE_GROUP == DMEM}]" \
+    "RAMB36 [fastnms::count_cells {REF_NAME =~ RAMB36*}]" \
+    "RAMB18 [fastnms::count_cells {REF_NAME =~ RAMB18*}]" \
+    "DSP [fastnms::count_cells {REF_NAME =~ DSP48*}]" \
     "clock $clock_port period $period ns, worst setup slack $wns ns, met at [format %.1f [expr {1000.0 / ($period - $wns)}]] MHz" \
 ]
 set f [open [file join $out_dir summary.txt] w]

@@ -3,11 +3,13 @@
 A Tcl interpreter comes from Python's tkinter when it imports, else from
 `tclsh`. With one, each script is checked command by command (`info complete`)
 and can be *dry-run*: sourced for real, with every Vivado command (any command
-plain Tcl does not know) answered by a stub that records the call. That checks
+plain Tcl does not know) answered by a stub that records the call. That runs
 the script's own Tcl (variables, procs, expressions, option parsing, paths,
-file lists) and the Vivado commands and arguments it issues, not what Vivado
-would answer. Without any interpreter only a brace/bracket/quote balance check
-is possible (`complete_commands_fallback`).
+file lists); stubcheck.check then checks the recorded calls against the
+commands, options, properties, CONFIG keys, pins and VLNVs Vivado knows
+(vivado_api). What Vivado would answer is not checked. Without any
+interpreter only a brace/bracket/quote balance check is possible
+(`complete_commands_fallback`).
 """
 
 from __future__ import annotations
@@ -147,23 +149,58 @@ def complete_commands_fallback(text: str) -> list[str]:
     return problems
 
 
-# Vivado stubbed: `unknown` answers every command plain Tcl lacks. A query
-# (get_*, current_*, create_*, make_*, ipx::get_*, ...) returns one word that
-# names the call, so that later calls show what they were given; a result
-# set in ::stub_results (by "command first-argument" or by command) wins.
+# Vivado stubbed: `unknown` answers every command plain Tcl lacks and records
+# the call (stubcheck.check then checks it against vivado_api). A result in
+# ::stub_results wins: its keys are glob patterns matched, in order, against
+# the call's words joined by spaces (a key without a pattern matches the calls
+# that start with it). Otherwise block-design objects get Vivado's names
+# (create_bd_cell and get_bd_cells give "/cell", get_bd_pins and
+# get_bd_intf_pins "/cell/pin"), and any other query (get_*, current_*,
+# create_*, make_*, add_*, infer_*) one word that names the call, so that
+# later calls show what they were given.
+#
+# `proc` is wrapped: a script that defines a proc in the global namespace
+# fails, as such a proc can hide a Vivado command (a `connect_net` proc once
+# hid Vivado's own); procs go in namespace fastnms.
 _STUB_PRELUDE = r"""
 set ::stub_calls {}
+proc ::stub_patterns {args} {
+    # The non-option words of a get_bd_* call, list elements flattened.
+    set patterns {}
+    set skip 0
+    foreach a $args {
+        if {$skip} {
+            set skip 0
+        } elseif {$a in {-filter -of_objects}} {
+            set skip 1
+        } elseif {![string match -* $a]} {
+            foreach p $a {
+                lappend patterns $p
+            }
+        }
+    }
+    return $patterns
+}
 proc unknown {args} {
     lappend ::stub_calls $args
     set command [lindex $args 0]
-    set key "$command [lindex $args 1]"
-    if {[dict exists $::stub_results $key]} {
-        return [dict get $::stub_results $key]
-    }
-    if {[dict exists $::stub_results $command]} {
-        return [dict get $::stub_results $command]
+    set call [join $args " "]
+    dict for {key value} $::stub_results {
+        if {$call eq $key || [string match "$key *" $call] || [string match $key $call]} {
+            return $value
+        }
     }
     set name [namespace tail $command]
+    if {$name eq "create_bd_cell"} {
+        return "/[lindex $args end]"
+    }
+    if {$name in {get_bd_cells get_bd_pins get_bd_intf_pins} && "-of_objects" ni $args} {
+        set objects {}
+        foreach p [::stub_patterns {*}[lrange $args 1 end]] {
+            lappend objects "/[string trimleft $p /]"
+        }
+        return $objects
+    }
     if {[regexp {^(get|current|create|make|add|infer)_} $name]} {
         set words {}
         foreach a [lrange $args 1 end] {
@@ -171,12 +208,26 @@ proc unknown {args} {
                 lappend words $a
             }
         }
-        return [list "$name [join $words { }]"]
+        return [list "[string trimleft $command :] [join $words { }]"]
     }
     return {}
 }
 proc exit {args} {
     error "the script called exit"
+}
+rename proc ::stub_proc
+::stub_proc proc {name arguments body} {
+    set space [uplevel 1 {namespace current}]
+    if {[string match ::* $name]} {
+        set full $name
+    } else {
+        set full [string trimright $space :]::$name
+    }
+    if {[namespace qualifiers $full] eq ""} {
+        error "tclcheck: proc '$name' in the global namespace could hide a Vivado\
+            command: define it in namespace fastnms"
+    }
+    uplevel 1 [list ::stub_proc $name $arguments $body]
 }
 """
 

@@ -2,10 +2,12 @@
 
 Every command of every script is complete Tcl; each script is dry-run under a
 real Tcl interpreter with the Vivado commands stubbed (tclcheck.dry_run), so
-its own logic, options, paths and file lists run for real; the RTL file list it
-builds covers rtl/ in compile order; and the names it uses exist in
-rtl/top/fastnms_axi.vhd once that file exists. What Vivado itself would say
-about the commands is not checked here (no Vivado).
+its own logic, options, paths and file lists run for real, and every Vivado
+call it makes is checked against the commands, options, properties, IP CONFIG
+keys, pin names and VLNVs of vivado_api (stubcheck; test_stub.py shows that a
+misspelling fails); the RTL file list it builds covers rtl/ in compile order;
+the names it uses exist in rtl/top/fastnms_axi.vhd. What Vivado itself would
+answer is not checked here (no Vivado): see vivado/README.md.
 """
 
 from __future__ import annotations
@@ -19,18 +21,31 @@ from pathlib import Path
 import pytest
 from fastnms.sim.sources import REPO, all_rtl_files, order_problems
 
-from flows.vivado_check import tclcheck
+from flows.vivado_check import stubcheck, tclcheck, xinterface
+from flows.vivado_check.harness import (
+    BD_RESULTS,
+    PACKAGE_RESULTS,
+    PART,
+    TOP,
+    VIVADO,
+    WORK,
+    XDC,
+    dry_run,
+    fake_ip_repo,
+    merge,
+    sandbox,
+)
 
-VIVADO = REPO / "vivado"
 SCRIPTS = sorted(VIVADO.glob("*.tcl"))
-XDC = REPO / "constraints" / "fastnms_ooc.xdc"
-TOP = REPO / "rtl" / "top" / "fastnms_axi.vhd"
-WORK = REPO / "build" / "test_vivado_tcl"
-PART = "xc7z020clg484-1"
 
 needs_tcl = pytest.mark.skipif(
     tclcheck.backend() is None, reason="no Tcl interpreter (neither tkinter nor tclsh)"
 )
+
+
+def tcl(code: str) -> str:
+    """`code` run after vivado/fastnms_common.tcl (plain Tcl, no stub)."""
+    return tclcheck.run_tcl(f"source {{{VIVADO / 'fastnms_common.tcl'}}}\n{code}")
 
 
 def test_the_scripts_exist() -> None:
@@ -51,7 +66,9 @@ def test_every_command_is_complete(path: Path) -> None:
 @pytest.mark.parametrize("path", SCRIPTS, ids=lambda p: p.name)
 def test_portable_tcl(path: Path) -> None:
     """Tcl 8.5 (older Vivado releases), no `exit` (it would end a Vivado
-    session that sources the script), no path of one machine."""
+    session that sources the script), no path of one machine, no proc outside
+    namespace fastnms (it could hide a Vivado command; the dry runs enforce
+    it too)."""
     code = "\n".join(
         line.split("#", 1)[0] if line.lstrip().startswith("#") else line
         for line in path.read_text().splitlines()
@@ -61,16 +78,15 @@ def test_portable_tcl(path: Path) -> None:
     assert not re.search(r"(^|[\[;{\s])exit(\s|$|\])", code), "the script calls exit"
     text = path.read_text()
     assert not re.search(r"(/home/|/work/|/tmp/|/opt/|[A-Za-z]:\\)", text), "absolute path"
+    procs = re.findall(r"^\s*proc\s+(\S+)", code, re.MULTILINE)
+    assert all(p.startswith("fastnms::") for p in procs), procs
 
 
-# ---- the RTL file list -----------------------------------------------------------
+# ---- the RTL file list, the clock, the board ------------------------------------------
 
 
 def tcl_rtl_files() -> list[Path]:
-    out = tclcheck.run_tcl(
-        f"source {{{VIVADO / 'fastnms_common.tcl'}}}\nreturn [join [fastnms::rtl_files] \\n]"
-    )
-    return [Path(line) for line in out.splitlines()]
+    return [Path(line) for line in tcl("return [join [fastnms::rtl_files] \\n]").splitlines()]
 
 
 @needs_tcl
@@ -84,19 +100,51 @@ def test_rtl_list_is_every_rtl_file_in_compile_order() -> None:
 
 
 @needs_tcl
+def test_fclk_is_the_io_pll_divided_by_an_integer() -> None:
+    """FCLK_CLK0 = IO PLL (1000 MHz) / (DIVISOR0 * DIVISOR1), 6-bit dividers
+    (UG585, PL clocks): 150 MHz is not reachable, 1000 / 7 is the default."""
+    assert tcl("fastnms::fclk_mhz") == "142.857143"
+    setting = tcl("fastnms::fclk_setting [fastnms::fclk_mhz]").split()
+    assert dict(zip(setting[::2], setting[1::2], strict=True)) == {
+        "mhz": "142.857143",
+        "divide": "7",
+        "divisor0": "1",
+        "divisor1": "7",
+    }
+    assert tcl("dict get [fastnms::fclk_setting 100] divide") == "10"
+    assert tcl("dict get [fastnms::fclk_setting 142.857] mhz") == "142.857143"
+    with pytest.raises(tclcheck.TclError, match=r"150 MHz.*nearest: 166.666667 \(/6\), 142"):
+        tcl("fastnms::fclk_setting 150")
+    # 67 is prime and above 63: no pair of 6-bit dividers makes it.
+    with pytest.raises(tclcheck.TclError, match="not 1000 MHz"):
+        tcl(f"fastnms::fclk_setting {1000 / 67}")
+
+
+@needs_tcl
 def test_ooc_period_is_the_bd_clock() -> None:
-    period = float(
-        tclcheck.run_tcl(f"source {{{VIVADO / 'fastnms_common.tcl'}}}\nfastnms::ooc_period")
-    )
-    assert period == pytest.approx(1000 / 150, abs=0.001)
-    assert re.search(r"--fclk-mhz\s+150\b", (VIVADO / "create_bd_zc7z20.tcl").read_text())
+    period = float(tcl("fastnms::ooc_period"))
+    assert period == pytest.approx(1000 / float(tcl("fastnms::fclk_mhz")), abs=0.0005)
+    assert "--fclk-mhz   [fastnms::fclk_mhz]" in (VIVADO / "create_bd_zc7z20.tcl").read_text()
     assert re.search(r"\[get_ports aclk\]", XDC.read_text())
+    assert "142.857 MHz" in XDC.read_text()
+
+
+@needs_tcl
+def test_latest_board_part_compares_version_numbers() -> None:
+    parts = (
+        "em.avnet.com:zed:part0:1.4 avnet.com:zedboard:part0:1.10 "
+        "digilentinc.com:zedboard:part0:1.0 avnet.com:zedboard:part0:1.9"
+    )
+    # lsort would give em.avnet.com (vendor order); 1.10 is the newest.
+    assert tcl(f"fastnms::latest_board_part {{{parts}}}") == "avnet.com:zedboard:part0:1.10"
+    assert tcl("fastnms::latest_board_part {}") == ""
+    assert tcl("fastnms::version_compare {1 4} {1 4 0}") == "0"
 
 
 def test_ip_version_follows_the_project_version() -> None:
     project = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
-    tcl = (VIVADO / "fastnms_common.tcl").read_text()
-    version = re.search(r"variable version\s+(\S+)", tcl).group(1)
+    tcl_text = (VIVADO / "fastnms_common.tcl").read_text()
+    version = re.search(r"variable version\s+(\S+)", tcl_text).group(1)
     assert version == ".".join(project.split(".")[:2])
 
 
@@ -110,97 +158,131 @@ def test_build_outputs_are_ignored() -> None:
     assert out == paths
 
 
-# ---- dry runs --------------------------------------------------------------------
+def test_make_vivado_bd_needs_a_board() -> None:
+    if shutil.which("make") is None:
+        pytest.skip("no make")
 
-
-def sandbox(name: str, *, with_top: bool = True) -> Path:
-    """A copy of vivado/, constraints/ and rtl/ under build/; with a placeholder
-    rtl/top/fastnms_axi.vhd (instantiating fastnms_core) when the real one does
-    not exist yet."""
-    root = WORK / name
-    shutil.rmtree(root, ignore_errors=True)
-    for folder in ("vivado", "constraints", "rtl"):
-        shutil.copytree(REPO / folder, root / folder)
-    top = root / "rtl" / "top" / "fastnms_axi.vhd"
-    if with_top and not top.exists():
-        top.write_text(
-            "entity fastnms_axi is\nend entity fastnms_axi;\n\n"
-            "architecture rtl of fastnms_axi is\nbegin\n\n"
-            "  core : entity work.fastnms_core;\n\nend architecture rtl;\n"
+    def make(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            ["make", "-n", "VIVADO=vivado", "vivado-bd", *args],
+            cwd=REPO,
+            capture_output=True,
+            text=True,
         )
-    if not with_top:
-        top.unlink(missing_ok=True)
-    return root
+
+    assert "needs BOARD=zedboard, BOARD=zc702 or BOARD=none" in make().stdout
+    out = make("BOARD=zedboard", "BD_ARGS=--impl").stdout
+    assert "create_bd_zc7z20.tcl -tclargs --board zedboard --impl" in out
 
 
-def calls_of(calls: list[list[str]], command: str) -> list[list[str]]:
-    return [c for c in calls if c[0] == command]
-
-
-def words(call: list[str]) -> str:
-    return " ".join(call)
+# ---- dry runs: package_ip.tcl -----------------------------------------------------------
 
 
 @needs_tcl
 def test_package_ip() -> None:
     root = sandbox("package_ip")
     out = root / "out" / "ip"
-    calls, error = tclcheck.dry_run(root / "vivado" / "package_ip.tcl", ["--out", str(out)])
-    assert error is None, error
-    (create,) = calls_of(calls, "create_project")
+    run = dry_run(root, "package_ip.tcl", ["--out", str(out)], PACKAGE_RESULTS)
+    run.assert_clean()
+    (create,) = run.of("create_project")
     assert create[-2:] == ["-part", PART]
     assert Path(create[3]) == out.parent / "package_ip_project"
 
-    (add,) = calls_of(calls, "add_files")
+    (add,) = run.of("add_files")
     *files, wrapper = [Path(f) for f in add[-1].split()]
     rtl = root / "rtl"
     assert sorted(files) == sorted(rtl.rglob("*.vhd")), "not every rtl/**/*.vhd is packaged"
     assert files[-1] == rtl / "top" / "fastnms_axi.vhd"
     assert wrapper == out.parent / "ip_wrapper" / "fastnms_axi_ip.vhd"
     assert "entity fastnms_axi_ip is" in wrapper.read_text()
-    types = {c[2]: c[3] for c in calls if c[:2] == ["set_property", "file_type"]}
+    types = {c[2]: c[3] for c in run.calls if c[:2] == ["set_property", "file_type"]}
     rtl_list = " ".join(str(f) for f in files)
     assert types == {"VHDL 2008": f"{{get_files {rtl_list}}}", "VHDL": f"{{get_files {wrapper}}}"}
-    assert ["set_property", "top", "fastnms_axi_ip", "{current_fileset }"] in calls
+    assert ["set_property", "top", "fastnms_axi_ip", "{current_fileset }"] in run.calls
 
-    (package,) = calls_of(calls, "ipx::package_project")
+    (package,) = run.of("ipx::package_project")
     assert package[package.index("-root_dir") + 1] == str(out)
     assert package[package.index("-vendor") + 1] == "fastnms"
     assert "-import_files" in package
-    props = {c[1]: c[2] for c in calls if c[0] == "set_property" and c[-1] == "{current_core }"}
+    props = {
+        c[1]: c[2] for c in run.calls if c[0] == "set_property" and c[-1] == "{ipx::current_core }"
+    }
     assert props["name"] == "fastnms_axi" and props["version"] == "0.1"
     assert "zynq Production" in " ".join(props["supported_families"].split())
     assert "artix7 Production" in " ".join(props["supported_families"].split())
 
-    # No inference needed: the stubs find every interface.
-    assert not calls_of(calls, "ipx::infer_bus_interfaces")
-    text = "\n".join(words(c) for c in calls)
+    # The interfaces come from the attributes: no inference, and the
+    # parameters the block design needs are read back.
+    assert not run.of("ipx::infer_bus_interfaces")
+    params = [
+        [w for w in c[1:] if not w.startswith("-")][0] for c in run.of("ipx::get_bus_parameters")
+    ]
+    assert {"POLARITY", "TUSER_WIDTH", "ASSOCIATED_BUSIF"} <= set(params)
+    text = run.text
     assert (
-        "set_property enablement_dependency $SCORE_VIDEO {get_bus_interfaces m_axis_score" in text
+        "set_property enablement_dependency $SCORE_VIDEO {ipx::get_bus_interfaces m_axis_score"
+        in text
     )
-    assert "set_property driver_value 1 {get_ports m_axis_score_tready" in text
+    assert "set_property driver_value 1 {ipx::get_ports m_axis_score_tready" in text
     assert "value_validation_list opencv sad" in text
     assert "value_validation_list 3x3 none region4 region8" in text
-    assert "value_validation_type range_long {get_user_parameters MAX_WIDTH" in text
-    assert "widget checkBox {get_guiparamspec SCORE_VIDEO" in text
-    assert "value_validation_type list {get_user_parameters CORNER_FIFO_DEPTH" in text
+    assert "value_validation_type range_long {ipx::get_user_parameters MAX_WIDTH" in text
+    assert "widget checkBox {ipgui::get_guiparamspec SCORE_VIDEO" in text
+    assert "value_validation_type list {ipx::get_user_parameters CORNER_FIFO_DEPTH" in text
     for command in ("ipx::create_xgui_files", "ipx::save_core", "ipx::archive_core"):
-        assert calls_of(calls, command), command
-    assert calls[-1] == ["close_project"]
+        assert run.of(command), command
+    assert run.calls[-1] == ["close_project"]
 
 
 @needs_tcl
-def test_package_ip_infers_missing_interfaces_then_gives_up() -> None:
+def test_package_ip_register_block_is_the_address_space() -> None:
+    """The 4 KiB address block of s_axi_ctrl is 2**ADDR_WIDTH of the top."""
+    text = (VIVADO / "package_ip.tcl").read_text()
+    (range_bytes,) = re.findall(r"set_property range (\d+) \$block", text)
+    found, _ = xinterface.interfaces(xinterface.load(TOP))
+    assert int(range_bytes) == 2 ** int(found["s_axi_ctrl"].parameters["ADDR_WIDTH"])
+
+
+@needs_tcl
+def test_package_ip_logs_and_checks_inference(capfd: pytest.CaptureFixture[str]) -> None:
     root = sandbox("package_ip_infer")
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "package_ip.tcl",
-        ["--out", str(root / "out" / "ip")],
-        {"ipx::get_bus_interfaces": ""},
+    out = ["--out", str(root / "out" / "ip")]
+    run = dry_run(
+        root, "package_ip.tcl", out, merge({"ipx::get_bus_interfaces": ""}, PACKAGE_RESULTS)
     )
-    assert error and "no bus interface s_axis_video m_axis_corners" in error
-    inferred = [c[1] for c in calls_of(calls, "ipx::infer_bus_interfaces")]
+    assert run.error and "no bus interface s_axis_video m_axis_corners" in run.error
+    assert not run.problems, run.problems
+    inferred = [c[1] for c in run.of("ipx::infer_bus_interfaces")]
     assert "xilinx.com:interface:axis_rtl:1.0" in inferred
     assert "xilinx.com:interface:aximm_rtl:1.0" in inferred
+    assert "INFERRING them from the port names" in capfd.readouterr().out
+
+    run = dry_run(root, "package_ip.tcl", out, PACKAGE_RESULTS)
+    assert run.error is None
+    assert "bus interfaces from the X_INTERFACE attributes" in capfd.readouterr().out
+
+
+@needs_tcl
+@pytest.mark.parametrize(
+    ("results", "message"),
+    [
+        (
+            {"get_property VALUE *POLARITY*": "ACTIVE_HIGH"},
+            "aresetn: POLARITY is ACTIVE_HIGH, must be ACTIVE_LOW",
+        ),
+        (
+            {"ipx::get_bus_parameters -quiet TUSER_WIDTH*": ""},
+            "s_axis_video: TUSER_WIDTH is (missing), must be 1",
+        ),
+    ],
+    ids=["polarity", "tuser_width"],
+)
+def test_package_ip_fails_without_the_bus_parameters(results: dict, message: str) -> None:
+    root = sandbox(f"package_ip_param_{len(message)}")
+    run = dry_run(
+        root, "package_ip.tcl", ["--out", str(root / "out" / "ip")], merge(results, PACKAGE_RESULTS)
+    )
+    assert run.error and message in run.error
 
 
 @needs_tcl
@@ -211,34 +293,48 @@ def test_package_ip_needs_the_top_level() -> None:
     assert not calls
 
 
-def fake_ip_repo(root: Path) -> Path:
-    repo = root / "ip"
-    repo.mkdir(parents=True, exist_ok=True)
-    (repo / "component.xml").write_text("<placeholder/>\n")
-    return repo
+# ---- dry runs: create_bd_zc7z20.tcl -------------------------------------------------------
 
 
-BD_RESULTS = {"get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "151.515"}
+def bd_run(name: str, argv: list[str], results: dict[str, str] | None = None):
+    root = sandbox(name)
+    return root, dry_run(
+        root,
+        "create_bd_zc7z20.tcl",
+        ["--ip-repo", str(fake_ip_repo(root)), "--out", str(root / "out"), *argv],
+        merge(results or {}, BD_RESULTS),
+    )
+
+
+def cell_config(run, cell: str) -> dict[str, str]:
+    """The CONFIG values a dry run set on block-design cell `cell`."""
+    settings: dict[str, str] = {}
+    for c in run.of("set_property"):
+        if c[-1] != f"/{cell}":
+            continue
+        pairs = stubcheck.tcl_split(c[2]) if c[1] == "-dict" else c[1:3]
+        settings.update(zip(pairs[::2], pairs[1::2], strict=True))
+    return settings
+
+
+def board_parts_set(run) -> list[str]:
+    return [c[2] for c in run.of("set_property") if c[1] == "board_part"]
+
+
+def pins(call: list[str]) -> set[str]:
+    return {w.strip("{}").split()[-1].lstrip("/") for w in call[1:]}
 
 
 @needs_tcl
 def test_create_bd() -> None:
-    root = sandbox("create_bd")
-    out = root / "out"
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl",
-        ["--ip-repo", str(fake_ip_repo(root)), "--out", str(out)],
-        BD_RESULTS,
-    )
-    assert error is None, error
-    (create,) = calls_of(calls, "create_project")
-    assert create[-2:] == ["-part", PART] and Path(create[3]) == out
-    # A board part is found (the stub answers), so it is used with its preset.
-    assert any(c[:2] == ["set_property", "board_part"] for c in calls)
-    text = "\n".join(words(c) for c in calls)
-    assert "apply_board_preset 1" in text
+    root, run = bd_run("create_bd", ["--board", "zedboard"])
+    run.assert_clean()
+    (create,) = run.of("create_project")
+    assert create[-2:] == ["-part", PART] and Path(create[3]) == root / "out"
+    assert board_parts_set(run) == ["avnet.com:zedboard:part0:1.4"]
+    assert "apply_board_preset 1" in run.text
 
-    cells = {c[-1]: c[c.index("-vlnv") + 1] for c in calls_of(calls, "create_bd_cell")}
+    cells = {c[-1]: c[c.index("-vlnv") + 1] for c in run.of("create_bd_cell")}
     assert cells == {
         "ps7": "xilinx.com:ip:processing_system7",
         "fastnms": "fastnms:vision:fastnms_axi:0.1",
@@ -249,44 +345,33 @@ def test_create_bd() -> None:
         "rst": "xilinx.com:ip:proc_sys_reset",
         "irq_concat": "xilinx.com:ip:xlconcat",
     }
-
-    def config(cell: str) -> dict[str, str]:
-        target = next(c for c in calls_of(calls, "create_bd_cell") if c[-1] == cell)
-        obj = (
-            "{" + "create_bd_cell " + " ".join(w for w in target[1:] if not w.startswith("-")) + "}"
-        )
-        settings: dict[str, str] = {}
-        for c in calls:
-            if c[0] == "set_property" and c[-1] == obj:
-                pairs = c[2].split() if c[1] == "-dict" else c[1:3]
-                settings.update(zip(pairs[::2], pairs[1::2], strict=True))
-        return settings
-
-    ps = config("ps7")
+    ps = cell_config(run, "ps7")
     for key, value in {
         "CONFIG.PCW_USE_M_AXI_GP0": "1",
         "CONFIG.PCW_USE_S_AXI_HP0": "1",
         "CONFIG.PCW_S_AXI_HP0_DATA_WIDTH": "64",
         "CONFIG.PCW_EN_CLK0_PORT": "1",
-        "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ": "150",
+        "CONFIG.PCW_FCLK0_PERIPHERAL_CLKSRC": "IO PLL",
+        "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ": "142.857143",
+        "CONFIG.PCW_FCLK_CLK0_BUF": "TRUE",
         "CONFIG.PCW_USE_FABRIC_INTERRUPT": "1",
         "CONFIG.PCW_IRQ_F2P_INTR": "1",
     }.items():
         assert ps[key] == value, key
-    vdma = config("vdma")
+    vdma = cell_config(run, "vdma")
     assert vdma["CONFIG.c_include_s2mm"] == "0" and vdma["CONFIG.c_include_mm2s"] == "1"
     assert vdma["CONFIG.c_m_axis_mm2s_tdata_width"] == "8"
-    dma = config("dma")
+    dma = cell_config(run, "dma")
     assert dma["CONFIG.c_include_mm2s"] == "0" and dma["CONFIG.c_include_s2mm"] == "1"
     assert dma["CONFIG.c_include_sg"] == "0"
     assert dma["CONFIG.c_s_axis_s2mm_tdata_width"] == "64"
-    assert config("fastnms")["CONFIG.SCORE_VIDEO"] == "false"
-    assert config("irq_concat")["CONFIG.NUM_PORTS"] == "3"
+    # 26 bits, the maximum: --nms none at 1920x1080 emits up to ~16 MB per frame.
+    assert dma["CONFIG.c_sg_length_width"] == "26"
+    assert 2**26 - 1 >= 1920 * 1080 * 8
+    assert cell_config(run, "fastnms")["CONFIG.SCORE_VIDEO"] == "false"
+    assert cell_config(run, "irq_concat")["CONFIG.NUM_PORTS"] == "3"
 
-    def pins(call: list[str]) -> set[str]:
-        return {w.strip("{}").split()[-1] for w in call[1:]}
-
-    intf = [pins(c) for c in calls_of(calls, "connect_bd_intf_net")]
+    intf = [pins(c) for c in run.of("connect_bd_intf_net")]
     for pair in (
         {"ps7/M_AXI_GP0", "ctrl_smc/S00_AXI"},
         {"ctrl_smc/M00_AXI", "fastnms/s_axi_ctrl"},
@@ -295,7 +380,7 @@ def test_create_bd() -> None:
         {"mem_smc/M00_AXI", "ps7/S_AXI_HP0"},
     ):
         assert pair in intf, pair
-    nets = [pins(c) for c in calls_of(calls, "connect_bd_net")]
+    nets = [pins(c) for c in run.of("connect_bd_net")]
     clock = next(n for n in nets if "ps7/FCLK_CLK0" in n)
     assert {"fastnms/aclk", "vdma/m_axis_mm2s_aclk", "dma/m_axi_s2mm_aclk"} <= clock
     assert {"ps7/M_AXI_GP0_ACLK", "ps7/S_AXI_HP0_ACLK"} <= clock
@@ -305,148 +390,160 @@ def test_create_bd() -> None:
     assert {"irq_concat/dout", "ps7/IRQ_F2P"} in nets
     assert any("fastnms/aresetn" in n and "rst/peripheral_aresetn" in n for n in nets)
 
-    order = [c[0] for c in calls]
+    order = [c[0] for c in run.calls]
     for earlier, later in (
         ("assign_bd_address", "validate_bd_design"),
         ("validate_bd_design", "make_wrapper"),
     ):
         assert order.index(earlier) < order.index(later)
-    assert (out / "address_map.txt").exists()
-    assert not calls_of(calls, "launch_runs")
+    assert (root / "out" / "address_map.txt").exists()
+    assert not run.of("launch_runs")
 
 
 @needs_tcl
-def test_create_bd_without_board_files() -> None:
-    root = sandbox("create_bd_no_board")
-    repo = fake_ip_repo(root)
-    results = {**BD_RESULTS, "get_board_parts": ""}
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl", ["--ip-repo", str(repo)], results
-    )
-    assert error is None, error
-    text = "\n".join(words(c) for c in calls)
-    assert "apply_board_preset 0" in text
-    assert "CONFIG.PCW_UIPARAM_DDR_PARTNO MT41K128M16 JT-125" in text
-    assert not any(c[:2] == ["set_property", "board_part"] for c in calls)
+def test_create_bd_board_choice() -> None:
+    # The newest version by number, whatever the vendor's name.
+    parts = "em.avnet.com:zed:part0:1.4 avnet.com:zedboard:part0:1.10 avnet.com:zedboard:part0:1.9"
+    root, run = bd_run("create_bd_board", ["--board", "zedboard"], {"get_board_parts": parts})
+    run.assert_clean()
+    assert board_parts_set(run) == ["avnet.com:zedboard:part0:1.10"]
+    patterns = [c[-1] for c in run.of("get_board_parts")]
+    assert patterns == ["*:zedboard:part0:*", "*:zed:part0:*"]
 
-    # An explicit board without its files is an error.
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl",
-        ["--ip-repo", str(repo), "--board", "zc702"],
-        results,
-    )
-    assert error and "no board files for zc702" in error
+    # Board files missing: an error naming the board, no silent fallback.
+    for board in ("zedboard", "zc702"):
+        root, run = bd_run(
+            f"create_bd_no_board_{board}", ["--board", board], {"get_board_parts": ""}
+        )
+        assert run.error and f"no board files for {board}" in run.error
+        assert not board_parts_set(run)
+
+    # --board none: no board part, no preset, the DDR part set.
+    root, run = bd_run("create_bd_board_none", ["--board", "none"])
+    run.assert_clean()
+    assert not run.of("get_board_parts")
+    assert "apply_board_preset 0" in run.text
+    assert "CONFIG.PCW_UIPARAM_DDR_PARTNO MT41K128M16 JT-125" in run.text
 
 
 @needs_tcl
 def test_create_bd_with_implementation() -> None:
-    root = sandbox("create_bd_impl")
     results = {
-        **BD_RESULTS,
+        "get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "125.000000",
         "get_property PROGRESS": "100%",
         "get_property SLACK": "0.412",
     }
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl",
-        ["--ip-repo", str(fake_ip_repo(root)), "--impl", "--jobs", "8", "--fclk-mhz", "125"],
-        results,
-    )
-    assert error is None, error
-    runs = calls_of(calls, "launch_runs")
+    argv = ["--board", "zc702", "--impl", "--jobs", "8", "--fclk-mhz", "125"]
+    root, run = bd_run("create_bd_impl", argv, results)
+    run.assert_clean()
+    runs = run.of("launch_runs")
     assert [r[1] for r in runs] == ["synth_1", "impl_1"]
     assert runs[1][runs[1].index("-to_step") + 1] == "write_bitstream"
     assert all(r[r.index("-jobs") + 1] == "8" for r in runs)
-    assert calls_of(calls, "write_hw_platform")
-    assert "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ 125" in "\n".join(words(c) for c in calls)
+    assert run.of("write_hw_platform")
+    assert "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ 125.000000" in run.text
 
     # A failed run stops the script.
-    _, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl",
-        ["--ip-repo", str(fake_ip_repo(WORK / "create_bd_impl_fail")), "--impl"],
-        {**results, "get_property PROGRESS": "0%"},
+    root, run = bd_run(
+        "create_bd_impl_fail", ["--board", "zc702", "--impl"], {"get_property PROGRESS": "0%"}
     )
-    assert error and "synthesis failed" in error
+    assert run.error and "synthesis failed" in run.error
+
+
+@needs_tcl
+def test_create_bd_stops_when_the_ps_gives_another_clock() -> None:
+    root, run = bd_run(
+        "create_bd_fclk",
+        ["--board", "zc702"],
+        {"get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "150.000000"},
+    )
+    assert run.error and "requested 142.857143 MHz, the PS gives '150.000000' MHz" in run.error
+    assert not run.of("validate_bd_design")
 
 
 @needs_tcl
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--board", "zcu102"], "--board must be"),
-        (["--fclk-mhz", "fast"], "--fclk-mhz must be"),
-        (["--bogus", "1"], "unknown option '--bogus'"),
-        (["--out"], "option --out needs a value"),
+        ([], "--board is required"),
+        (["--board", "auto"], "--board must be zedboard, zc702 or none"),
+        (["--board", "zc702", "--fclk-mhz", "150"], "150 MHz is not 1000 MHz (IO PLL) divided"),
+        (["--board", "zc702", "--fclk-mhz", "fast"], "must be a frequency in MHz"),
+        (["--board", "zc702", "--bogus", "1"], "unknown option '--bogus'"),
+        (["--board", "zc702", "--out"], "option --out needs a value"),
     ],
 )
 def test_create_bd_rejects_bad_options(argv: list[str], message: str) -> None:
-    root = sandbox(f"create_bd_options{argv[0]}{len(argv)}")
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl",
-        ["--ip-repo", str(fake_ip_repo(root)), *argv],
-        BD_RESULTS,
-    )
-    assert error and message in error
-    assert not calls
+    root, run = bd_run(f"create_bd_options{len(argv)}{len(message)}", argv)
+    assert run.error and message in run.error
+    assert not run.calls
 
 
 @needs_tcl
 def test_create_bd_needs_the_packaged_ip() -> None:
     root = sandbox("create_bd_no_ip")
-    _, error = tclcheck.dry_run(
-        root / "vivado" / "create_bd_zc7z20.tcl", ["--ip-repo", str(root / "nothing")]
+    calls, error = tclcheck.dry_run(
+        root / "vivado" / "create_bd_zc7z20.tcl",
+        ["--board", "zc702", "--ip-repo", str(root / "nothing")],
     )
     assert error and "run vivado/package_ip.tcl first" in error
+
+
+# ---- dry runs: synth_ooc.tcl ------------------------------------------------------------
 
 
 @needs_tcl
 def test_synth_ooc() -> None:
     root = sandbox("synth_ooc")
     out = root / "out"
-    calls, error = tclcheck.dry_run(
-        root / "vivado" / "synth_ooc.tcl",
+    run = dry_run(
+        root,
+        "synth_ooc.tcl",
         ["--out", str(out), "--generics", "SCORE=sad NMS=none"],
         {"get_property SLACK": "0.5"},
     )
-    assert error is None, error
-    read = [Path(c[-1]) for c in calls_of(calls, "read_vhdl")]
-    assert all(c[1] == "-vhdl2008" for c in calls_of(calls, "read_vhdl"))
+    run.assert_clean()
+    read = [Path(c[-1]) for c in run.of("read_vhdl")]
+    assert all(c[1] == "-vhdl2008" for c in run.of("read_vhdl"))
     assert sorted(read) == sorted((root / "rtl").rglob("*.vhd"))
     assert not order_problems_in(read, root)
-    assert calls_of(calls, "read_xdc") == [
+    assert run.of("read_xdc") == [
         ["read_xdc", "-mode", "out_of_context", str(root / "constraints" / "fastnms_ooc.xdc")]
     ]
-    (synth,) = calls_of(calls, "synth_design")
+    (synth,) = run.of("synth_design")
     assert synth[synth.index("-top") + 1] == "fastnms_axi"
     assert synth[synth.index("-part") + 1] == PART
     assert synth[synth.index("-mode") + 1] == "out_of_context"
     assert synth[-4:] == ["-generic", "SCORE=sad", "-generic", "NMS=none"]
-    assert calls_of(calls, "route_design")
-    order = [c[0] for c in calls]
+    assert run.of("route_design")
+    order = [c[0] for c in run.calls]
     assert order.index("read_xdc") < order.index("synth_design") < order.index("route_design")
     summary = (out / "summary.txt").read_text()
-    assert "worst setup slack 0.5 ns" in summary and "met at 162.2 MHz" in summary
+    assert "period 7.000 ns, worst setup slack 0.5 ns" in summary
+    assert "met at 153.8 MHz" in summary
 
 
 def order_problems_in(files: list[Path], root: Path) -> list[str]:
     """order_problems for files of a sandbox copy, checked on the originals."""
-    return order_problems([REPO / f.relative_to(root) for f in files if f.name != TOP.name])
+    return order_problems([REPO / f.relative_to(root) for f in files])
 
 
 @needs_tcl
 def test_synth_ooc_options() -> None:
     root = sandbox("synth_ooc_options")
-    script = root / "vivado" / "synth_ooc.tcl"
-    calls, error = tclcheck.dry_run(
-        script,
+    run = dry_run(
+        root,
+        "synth_ooc.tcl",
         ["--top", "fastnms_core", "--clock-port", "clk", "--synth-only", "--out", str(root / "o")],
         {"get_property SLACK": "1.0"},
     )
-    assert error is None, error
-    assert not calls_of(calls, "route_design")
-    (xdc,) = calls_of(calls, "read_xdc")
+    run.assert_clean()
+    assert not run.of("route_design")
+    (xdc,) = run.of("read_xdc")
     clock_xdc = Path(xdc[-1]).read_text()
-    assert "create_clock -period 6.667 -name clk [get_ports clk]" in clock_xdc
+    assert "create_clock -period 7.000 -name clk [get_ports clk]" in clock_xdc
 
+    script = root / "vivado" / "synth_ooc.tcl"
     _, error = tclcheck.dry_run(
         script, ["--require-timing", "--out", str(root / "t")], {"get_property SLACK": "-0.1"}
     )
@@ -455,12 +552,12 @@ def test_synth_ooc_options() -> None:
     assert error and "a generic is NAME=VALUE" in error
 
 
-# ---- the top level, once it exists ---------------------------------------------------
+# ---- the top level ------------------------------------------------------------------------
 
 # The names create_bd_zc7z20.tcl and package_ip.tcl use on the IP.
 BUS_PORTS = {
     "s_axis_video": ["tdata", "tuser", "tlast", "tvalid", "tready"],
-    "m_axis_corners": ["tdata", "tlast", "tvalid", "tready"],
+    "m_axis_corners": ["tdata", "tkeep", "tlast", "tvalid", "tready"],
     "m_axis_score": ["tdata", "tuser", "tlast", "tvalid", "tready"],
     "s_axi_ctrl": [
         "awaddr", "awprot", "awvalid", "awready", "wdata", "wstrb", "wvalid", "wready",
@@ -469,35 +566,13 @@ BUS_PORTS = {
     ],
 }  # fmt: skip
 
-needs_top = pytest.mark.skipif(
-    not TOP.exists(), reason="rtl/top/fastnms_axi.vhd does not exist yet"
-)
 
-
-def top_ports() -> set[str]:
-    text = re.sub(r"--[^\n]*", "", TOP.read_text()).lower()
-    entity = re.search(r"\bentity\s+fastnms_axi\s+is(.*?)\bend\b", text, re.DOTALL)
-    assert entity, "no entity fastnms_axi in rtl/top/fastnms_axi.vhd"
-    return set(re.findall(r"(\w+)\s*:\s*(?:in|out|inout)\b", entity.group(1)))
-
-
-@needs_top
 def test_top_has_the_ports_the_scripts_use() -> None:
-    ports = top_ports()
+    ports = set(xinterface.load(TOP).ports)
     expected = {"aclk", "aresetn", "interrupt"} | {
         f"{bus}_{signal}" for bus, signals in BUS_PORTS.items() for signal in signals
     }
     assert not expected - ports, f"missing in fastnms_axi: {sorted(expected - ports)}"
-
-
-@needs_top
-def test_top_names_its_bus_interfaces() -> None:
-    """X_INTERFACE_INFO names the interfaces as the scripts do."""
-    text = TOP.read_text()
-    infos = re.findall(r'"xilinx\.com:(?:interface|signal):(\w+):1\.0\s+(\w+)', text)
-    names = {name for _, name in infos}
-    assert {"s_axis_video", "m_axis_corners", "m_axis_score", "s_axi_ctrl"} <= names
-    assert {"aclk", "aresetn", "interrupt"} <= names
 
 
 def ghdl(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
@@ -505,7 +580,6 @@ def ghdl(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
 
 
 @needs_tcl
-@needs_top
 def test_ip_wrapper_is_vhdl93_and_elaborates() -> None:
     """The IP packager reads the top-level file as VHDL-93 (UG1118), so
     package_ip.tcl packages a generated wrapper, fastnms_axi_ip. It must be
@@ -518,12 +592,7 @@ def test_ip_wrapper_is_vhdl93_and_elaborates() -> None:
     (work / "93").mkdir(parents=True)
     (work / "08").mkdir()
     wrapper = work / "fastnms_axi_ip.vhd"
-    wrapper.write_text(
-        tclcheck.run_tcl(
-            f"source {{{VIVADO / 'fastnms_common.tcl'}}}\n"
-            f"fastnms::ip_wrapper {{{TOP}}} fastnms_axi fastnms_axi_ip"
-        )
-    )
+    wrapper.write_text(tcl(f"fastnms::ip_wrapper {{{TOP}}} fastnms_axi fastnms_axi_ip"))
     text = wrapper.read_text()
     assert "entity fastnms_axi_ip is" in text and "ip : entity work.fastnms_axi" in text
 

@@ -11,9 +11,11 @@
 -- Vivado's IP packager; the interface attributes sit in the entity's
 -- declarative part, where the LRM (and GHDL) want port attributes.
 --
--- aresetn: synchronised by a register chain, then the synchronous reset of
--- the control state; every output valid is low from the third clock of
--- aresetn low. Hold aresetn low for at least 4 clocks (AMD IPs ask for 16).
+-- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
+-- registered twice more before it resets the control state, but every VALID
+-- and READY of the top is low from the first clock edge at which aresetn is
+-- sampled low (a mask register, `ports_on`) until the internal reset is over.
+-- Hold aresetn low for at least 4 clocks (AMD IPs ask for 16).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -41,8 +43,9 @@ entity fastnms_axi is
     s_axis_video_tlast  : in    std_logic;
     s_axis_video_tvalid : in    std_logic;
     s_axis_video_tready : out   std_logic;
-    -- corner records (tlast on the last record of each frame)
+    -- corner records (tlast on the last record of each frame; tkeep all ones)
     m_axis_corners_tdata  : out   std_logic_vector(63 downto 0);
+    m_axis_corners_tkeep  : out   std_logic_vector(7 downto 0);
     m_axis_corners_tlast  : out   std_logic;
     m_axis_corners_tvalid : out   std_logic;
     m_axis_corners_tready : in    std_logic;
@@ -53,7 +56,7 @@ entity fastnms_axi is
     m_axis_score_tvalid : out   std_logic;
     m_axis_score_tready : in    std_logic;
     -- control (AXI4-Lite)
-    s_axi_ctrl_awaddr  : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_awaddr  : in    std_logic_vector(11 downto 0);
     s_axi_ctrl_awprot  : in    std_logic_vector(2 downto 0);
     s_axi_ctrl_awvalid : in    std_logic;
     s_axi_ctrl_awready : out   std_logic;
@@ -64,7 +67,7 @@ entity fastnms_axi is
     s_axi_ctrl_bresp   : out   std_logic_vector(1 downto 0);
     s_axi_ctrl_bvalid  : out   std_logic;
     s_axi_ctrl_bready  : in    std_logic;
-    s_axi_ctrl_araddr  : in    std_logic_vector(7 downto 0);
+    s_axi_ctrl_araddr  : in    std_logic_vector(11 downto 0);
     s_axi_ctrl_arprot  : in    std_logic_vector(2 downto 0);
     s_axi_ctrl_arvalid : in    std_logic;
     s_axi_ctrl_arready : out   std_logic;
@@ -108,6 +111,8 @@ entity fastnms_axi is
 
   attribute x_interface_info of m_axis_corners_tdata : signal is
     "xilinx.com:interface:axis:1.0 m_axis_corners TDATA";
+  attribute x_interface_info of m_axis_corners_tkeep : signal is
+    "xilinx.com:interface:axis:1.0 m_axis_corners TKEEP";
   attribute x_interface_info of m_axis_corners_tlast : signal is
     "xilinx.com:interface:axis:1.0 m_axis_corners TLAST";
   attribute x_interface_info of m_axis_corners_tvalid : signal is
@@ -116,7 +121,7 @@ entity fastnms_axi is
     "xilinx.com:interface:axis:1.0 m_axis_corners TREADY";
   attribute x_interface_parameter of m_axis_corners_tdata : signal is
     "XIL_INTERFACENAME m_axis_corners, TDATA_NUM_BYTES 8, TUSER_WIDTH 0, HAS_TLAST 1, HAS_TREADY 1, " &
-    "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
+    "HAS_TKEEP 1, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
   attribute x_interface_info of m_axis_score_tdata : signal is
     "xilinx.com:interface:axis:1.0 m_axis_score TDATA";
@@ -171,7 +176,7 @@ entity fastnms_axi is
   attribute x_interface_info of s_axi_ctrl_rready : signal is
     "xilinx.com:interface:aximm:1.0 s_axi_ctrl RREADY";
   attribute x_interface_parameter of s_axi_ctrl_awaddr : signal is
-    "XIL_INTERFACENAME s_axi_ctrl, PROTOCOL AXI4LITE, DATA_WIDTH 32, ADDR_WIDTH 8, READ_WRITE_MODE READ_WRITE, " &
+    "XIL_INTERFACENAME s_axi_ctrl, PROTOCOL AXI4LITE, DATA_WIDTH 32, ADDR_WIDTH 12, READ_WRITE_MODE READ_WRITE, " &
     "HAS_BURST 0, HAS_LOCK 0, HAS_PROT 1, HAS_CACHE 0, HAS_QOS 0, HAS_REGION 0, HAS_WSTRB 1, HAS_BRESP 1, " &
     "HAS_RRESP 1, NUM_READ_OUTSTANDING 1, NUM_WRITE_OUTSTANDING 1";
 end entity fastnms_axi;
@@ -181,13 +186,16 @@ architecture rtl of fastnms_axi is
   constant X_BITS     : positive := clog2(MAX_WIDTH);
   constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
   constant SCORE_BITS : positive := score_width(SCORE);
-  -- A record in the FIFO: kind (2 bits, see fastnms_corner_pack), x, y, score.
+  -- A record from the packer: kind (2 bits, see fastnms_corner_pack), x, y,
+  -- score; in the FIFO, the overflow flag above them.
   constant PACKED_BITS : positive := 2 + X_BITS + Y_BITS + SCORE_BITS;
+  constant FIFO_BITS   : positive := PACKED_BITS + 1;
 
   -- Reset: the synchroniser chain, then the pipeline's reset (also held
   -- during a soft reset).
   signal reset_chain : std_logic_vector(2 downto 0);
   signal rst         : std_logic;
+  signal ports_on    : std_logic; -- '0': every VALID and READY of the top is low
   signal soft_busy   : std_logic;
   signal soft_pulse  : std_logic;
   signal pipe_rst    : std_logic;
@@ -195,8 +203,21 @@ architecture rtl of fastnms_axi is
   attribute async_reg                : string;
   attribute async_reg of reset_chain : signal is "TRUE";
 
+  -- Register accesses (slave to register file).
+  signal wr_en    : std_logic;
+  signal wr_index : unsigned(REG_ADDR_WIDTH - 3 downto 0);
+  signal wr_data  : std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+  signal wr_strb  : std_logic_vector(REG_DATA_WIDTH / 8 - 1 downto 0);
+  signal wr_done  : std_logic;
+  signal rd_en    : std_logic;
+  signal rd_index : unsigned(REG_ADDR_WIDTH - 3 downto 0);
+  signal rd_data  : std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+  signal rd_done  : std_logic;
+  signal irq      : std_logic;
+
   -- Configuration.
   signal enable        : std_logic;
+  signal live          : std_logic;
   signal cfg_pending   : std_logic;
   signal cfg_apply     : std_logic;
   signal cfg_width     : unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
@@ -208,6 +229,8 @@ architecture rtl of fastnms_axi is
   signal v_out      : std_logic_vector(9 downto 0);
   signal v_valid    : std_logic;
   signal v_in_ready : std_logic;
+  signal v_tready   : std_logic;
+  signal v_tvalid   : std_logic;
   signal v_ready    : std_logic;
   signal c_valid    : std_logic; -- into the core
   signal c_ready    : std_logic;
@@ -224,12 +247,22 @@ architecture rtl of fastnms_axi is
   signal k_eof      : std_logic;
   signal open_frame : std_logic;
 
-  -- Records: packed, then the FIFO.
+  -- Records: packed, then (LIVE: dropped if they do not fit) the FIFO.
   signal p_valid : std_logic;
   signal p_ready : std_logic;
   signal p_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
+  signal p_last  : std_logic; -- a frame's last record (LAST, EMPTY or ABORTED)
+  signal q_valid : std_logic;
+  signal q_ready : std_logic;
+  signal q_room2 : std_logic;
+  signal q_fits  : std_logic;
+  signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
+  signal drop    : std_logic;
+  signal lost    : std_logic; -- records dropped since the last LAST record stored
   signal f_valid : std_logic;
-  signal f_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
+  signal f_ready : std_logic;
+  signal f_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
+  signal f_over  : std_logic;
   signal f_busy  : std_logic;
   signal f_kind  : std_logic_vector(1 downto 0);
   signal f_x     : std_logic_vector(X_BITS - 1 downto 0);
@@ -253,6 +286,8 @@ architecture rtl of fastnms_axi is
   signal err_sof_missing : std_logic;
   signal err_sof_early   : std_logic;
   signal overflow        : std_logic;
+  signal dropped         : std_logic;
+  signal stalled         : std_logic;
   signal out_record      : std_logic;
   signal out_last        : std_logic;
 
@@ -285,6 +320,16 @@ begin
 
   rst <= reset_chain(reset_chain'high);
 
+  -- Low from the edge that samples aresetn low until the clock after rst.
+  port_mask : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      ports_on <= aresetn and not (or reset_chain);
+    end if;
+
+  end process port_mask;
+
   -- A soft reset holds the pipeline in reset until the record packer has
   -- closed the frame it had open (at least one clock).
   soft_reset : process (aclk) is
@@ -308,6 +353,45 @@ begin
 
   -- ---- registers -------------------------------------------------------------
 
+  -- The AWPROT/ARPROT ports are not used (no protected registers).
+  slave : entity work.fastnms_axil_slave
+    generic map (
+      ADDR_WIDTH => REG_ADDR_WIDTH,
+      DATA_WIDTH => REG_DATA_WIDTH,
+      WORDS      => REG_COUNT
+    )
+    port map (
+      clk           => aclk,
+      rst           => rst,
+      active        => ports_on,
+      s_axi_awaddr  => s_axi_ctrl_awaddr,
+      s_axi_awvalid => s_axi_ctrl_awvalid,
+      s_axi_awready => s_axi_ctrl_awready,
+      s_axi_wdata   => s_axi_ctrl_wdata,
+      s_axi_wstrb   => s_axi_ctrl_wstrb,
+      s_axi_wvalid  => s_axi_ctrl_wvalid,
+      s_axi_wready  => s_axi_ctrl_wready,
+      s_axi_bresp   => s_axi_ctrl_bresp,
+      s_axi_bvalid  => s_axi_ctrl_bvalid,
+      s_axi_bready  => s_axi_ctrl_bready,
+      s_axi_araddr  => s_axi_ctrl_araddr,
+      s_axi_arvalid => s_axi_ctrl_arvalid,
+      s_axi_arready => s_axi_ctrl_arready,
+      s_axi_rdata   => s_axi_ctrl_rdata,
+      s_axi_rresp   => s_axi_ctrl_rresp,
+      s_axi_rvalid  => s_axi_ctrl_rvalid,
+      s_axi_rready  => s_axi_ctrl_rready,
+      wr_en         => wr_en,
+      wr_index      => wr_index,
+      wr_data       => wr_data,
+      wr_strb       => wr_strb,
+      wr_done       => wr_done,
+      rd_en         => rd_en,
+      rd_index      => rd_index,
+      rd_data       => rd_data,
+      rd_done       => rd_done
+    );
+
   regs : entity work.fastnms_axi_regs
     generic map (
       MAX_WIDTH         => MAX_WIDTH,
@@ -320,24 +404,17 @@ begin
     port map (
       clk             => aclk,
       rst             => rst,
-      s_axi_awaddr    => s_axi_ctrl_awaddr,
-      s_axi_awvalid   => s_axi_ctrl_awvalid,
-      s_axi_awready   => s_axi_ctrl_awready,
-      s_axi_wdata     => s_axi_ctrl_wdata,
-      s_axi_wstrb     => s_axi_ctrl_wstrb,
-      s_axi_wvalid    => s_axi_ctrl_wvalid,
-      s_axi_wready    => s_axi_ctrl_wready,
-      s_axi_bresp     => s_axi_ctrl_bresp,
-      s_axi_bvalid    => s_axi_ctrl_bvalid,
-      s_axi_bready    => s_axi_ctrl_bready,
-      s_axi_araddr    => s_axi_ctrl_araddr,
-      s_axi_arvalid   => s_axi_ctrl_arvalid,
-      s_axi_arready   => s_axi_ctrl_arready,
-      s_axi_rdata     => s_axi_ctrl_rdata,
-      s_axi_rresp     => s_axi_ctrl_rresp,
-      s_axi_rvalid    => s_axi_ctrl_rvalid,
-      s_axi_rready    => s_axi_ctrl_rready,
+      wr_en           => wr_en,
+      wr_index        => wr_index,
+      wr_data         => wr_data,
+      wr_strb         => wr_strb,
+      wr_done         => wr_done,
+      rd_en           => rd_en,
+      rd_index        => rd_index,
+      rd_data         => rd_data,
+      rd_done         => rd_done,
       enable          => enable,
+      live            => live,
       soft_reset      => soft_pulse,
       soft_busy       => soft_busy,
       cfg_pending     => cfg_pending,
@@ -351,17 +428,22 @@ begin
       evt_sof_missing => err_sof_missing,
       evt_sof_early   => err_sof_early,
       evt_overflow    => overflow,
+      evt_dropped     => dropped,
+      evt_stall       => stalled,
       out_record      => out_record,
       out_last        => out_last,
-      interrupt       => interrupt
+      interrupt       => irq
     );
+
+  interrupt <= irq and ports_on;
 
   -- ---- video in ----------------------------------------------------------------
 
   v_in <= s_axis_video_tuser & s_axis_video_tlast & s_axis_video_tdata;
-  -- No tready during reset (the synchronised one ends up to 3 clocks after
-  -- aresetn): a pixel taken then would be lost.
-  s_axis_video_tready <= v_in_ready and not rst;
+  -- No tready during reset: a pixel taken then would be lost.
+  v_tvalid            <= s_axis_video_tvalid and ports_on;
+  v_tready            <= v_in_ready and ports_on;
+  s_axis_video_tready <= v_tready;
 
   input_buffer : entity work.fastnms_skid_buffer
     generic map (
@@ -370,7 +452,7 @@ begin
     port map (
       clk       => aclk,
       rst       => rst,
-      in_valid  => s_axis_video_tvalid,
+      in_valid  => v_tvalid,
       in_ready  => v_in_ready,
       in_data   => v_in,
       out_valid => v_valid,
@@ -479,23 +561,61 @@ begin
       open_frame => open_frame
     );
 
+  -- LIVE = 0: every record waits for room. LIVE = 1: the packer is never
+  -- stalled; a record that does not fit is dropped. A frame's last record
+  -- needs one free word, any other record two (room for it and the next), so
+  -- the last record of a frame whose records were dropped still finds a word
+  -- unless the FIFO was already full; it carries OVERFLOW for every record
+  -- dropped since the last LAST record stored.
+  p_last  <= p_data(PACKED_BITS - 1) or p_data(PACKED_BITS - 2);
+  q_fits  <= q_ready when p_last = '1' else
+             q_room2;
+  p_ready <= '1' when live = '1' else
+             q_ready;
+  q_valid <= p_valid and (q_fits or not live);
+  drop    <= p_valid and live and not q_fits;
+  q_data  <= (p_last and (lost or drop)) & p_data;
+
+  drops : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      if q_valid = '1' and q_ready = '1' and p_last = '1' then
+        lost <= '0';
+      end if;
+      if drop = '1' then
+        lost <= '1';
+      end if;
+      dropped <= drop;
+
+      if rst = '1' then
+        lost    <= '0';
+        dropped <= '0';
+      end if;
+    end if;
+
+  end process drops;
+
   fifo : entity work.fastnms_fifo
     generic map (
       DEPTH => CORNER_FIFO_DEPTH,
-      WIDTH => PACKED_BITS
+      WIDTH => FIFO_BITS
     )
     port map (
       clk       => aclk,
       rst       => rst,
-      in_valid  => p_valid,
-      in_ready  => p_ready,
-      in_data   => p_data,
+      in_valid  => q_valid,
+      in_ready  => q_ready,
+      in_room2  => q_room2,
+      in_data   => q_data,
       out_valid => f_valid,
-      out_ready => m_axis_corners_tready,
+      out_ready => f_ready,
       out_data  => f_data,
       busy      => f_busy
     );
 
+  f_ready <= m_axis_corners_tready and ports_on;
+  f_over  <= f_data(FIFO_BITS - 1);
   f_kind  <= f_data(PACKED_BITS - 1 downto PACKED_BITS - 2);
   f_empty <= f_kind(1) and f_kind(0);
   f_last  <= f_kind(1) or f_kind(0);
@@ -514,14 +634,16 @@ begin
     m_axis_corners_tdata(REC_EMPTY)                                           <= f_empty;
     m_axis_corners_tdata(REC_LAST)                                            <= f_last;
     m_axis_corners_tdata(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
+    m_axis_corners_tdata(REC_OVERFLOW)                                        <= f_over;
 
   end process record_out;
 
+  m_axis_corners_tkeep  <= (others => '1');
   m_axis_corners_tlast  <= f_last;
-  m_axis_corners_tvalid <= f_valid;
+  m_axis_corners_tvalid <= f_valid and ports_on;
 
-  out_record <= f_valid and m_axis_corners_tready and not f_empty;
-  out_last   <= f_valid and m_axis_corners_tready and f_last;
+  out_record <= f_valid and f_ready and not f_empty;
+  out_last   <= f_valid and f_ready and f_last;
 
   -- ---- status ----------------------------------------------------------------------
 
@@ -530,7 +652,8 @@ begin
 
     if rising_edge(aclk) then
       busy     <= in_frame or open_frame or f_busy;
-      overflow <= k_valid and not k_ready and not soft_busy;
+      overflow <= (k_valid and not k_ready and not soft_busy) or drop;
+      stalled  <= s_axis_video_tvalid and not v_tready and ports_on;
     end if;
 
   end process status;
@@ -538,9 +661,11 @@ begin
   -- ---- score video -------------------------------------------------------------------
 
   score_stream : if SCORE_VIDEO generate
-    signal t_in  : std_logic_vector(9 downto 0);
-    signal t_out : std_logic_vector(9 downto 0);
-    signal t_sat : std_logic_vector(7 downto 0);
+    signal t_in        : std_logic_vector(9 downto 0);
+    signal t_out       : std_logic_vector(9 downto 0);
+    signal t_sat       : std_logic_vector(7 downto 0);
+    signal t_out_valid : std_logic;
+    signal t_out_ready : std_logic;
   begin
 
     -- The score as 8 bits, saturated (the sad score has 12).
@@ -558,14 +683,16 @@ begin
         in_valid  => t_valid,
         in_ready  => t_ready,
         in_data   => t_in,
-        out_valid => m_axis_score_tvalid,
-        out_ready => m_axis_score_tready,
+        out_valid => t_out_valid,
+        out_ready => t_out_ready,
         out_data  => t_out
       );
 
-    m_axis_score_tuser <= t_out(9);
-    m_axis_score_tlast <= t_out(8);
-    m_axis_score_tdata <= t_out(7 downto 0);
+    t_out_ready         <= m_axis_score_tready and ports_on;
+    m_axis_score_tvalid <= t_out_valid and ports_on;
+    m_axis_score_tuser  <= t_out(9);
+    m_axis_score_tlast  <= t_out(8);
+    m_axis_score_tdata  <= t_out(7 downto 0);
 
   end generate score_stream;
 

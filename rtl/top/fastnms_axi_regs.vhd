@@ -1,25 +1,28 @@
--- AXI4-Lite slave and register file of fastnms_axi. The map is in
--- fastnms_regs_pkg (generated from rtl/top/fastnms_regs.toml; see docs/fastnms_axi.md).
+-- The register file of fastnms_axi (the map is fastnms_regs_pkg, generated
+-- from rtl/top/fastnms_regs.toml; see docs/fastnms_axi.md). The AXI4-Lite
+-- protocol is fastnms_axil_slave's: this file sees one access at a time.
 --
--- Protocol: one write and one read in flight (the address and data of a
--- write are taken in any order, each behind a registered ready). A write
--- responds three clocks after both halves are in, a read two clocks after
--- its address; BVALID/RVALID then wait for BREADY/RREADY. Responses: OKAY,
--- or SLVERR for an address outside the map or a write whose WSTRB is not
--- "1111" (such a write changes nothing). Writes to read-only registers are
--- ignored with OKAY. AWPROT/ARPROT are ignored.
+-- Writes: wr_en with the word index, data and byte strobes; the write takes
+-- effect four clocks later, when wr_done pulses (decode, merge of the bytes
+-- not strobed, the two clamping steps). Byte strobes are honoured: a byte whose
+-- strobe is 0 keeps its value (rw) or has no effect (w1c, w1p, wo). Writes to
+-- read-only registers change nothing. Reads: rd_done and rd_data one clock
+-- after rd_en.
 --
 -- Configuration: THRESHOLD, WIDTH and HEIGHT are written into shadow
 -- registers and set cfg_pending; the core's values (cfg_*) take them when
 -- cfg_apply pulses (the video gate does that at a start of frame, while the
 -- input waits). WIDTH and HEIGHT writes are clamped to 7 .. MAX_*.
 --
+-- Commands (CMD) act only with KEY = 0x5A in the same write.
+--
 -- Status: the sticky STATUS bits are set by one-clock event pulses and
 -- cleared by writing 1. out_record / out_last pulse on the handshakes of
 -- m_axis_corners (a record that is not EMPTY / a record with tlast);
 -- three clocks after the pulse of a last record, CORNER_COUNT and FRAME_COUNT
--- take their new values and FRAME_DONE is set. interrupt = IRQ_ENABLE and FRAME_DONE,
--- registered.
+-- take their new values and FRAME_DONE is set. DROPPED and INPUT_STALLS count
+-- the pulses of evt_dropped and evt_stall. interrupt = IRQ_ENABLE and
+-- FRAME_DONE, registered.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -40,28 +43,21 @@ entity fastnms_axi_regs is
   port (
     clk : in    std_logic;
     rst : in    std_logic;
-    -- AXI4-Lite slave
-    s_axi_awaddr  : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
-    s_axi_awvalid : in    std_logic;
-    s_axi_awready : out   std_logic;
-    s_axi_wdata   : in    std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
-    s_axi_wstrb   : in    std_logic_vector(REG_DATA_WIDTH / 8 - 1 downto 0);
-    s_axi_wvalid  : in    std_logic;
-    s_axi_wready  : out   std_logic;
-    s_axi_bresp   : out   std_logic_vector(1 downto 0);
-    s_axi_bvalid  : out   std_logic;
-    s_axi_bready  : in    std_logic;
-    s_axi_araddr  : in    std_logic_vector(REG_ADDR_WIDTH - 1 downto 0);
-    s_axi_arvalid : in    std_logic;
-    s_axi_arready : out   std_logic;
-    s_axi_rdata   : out   std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
-    s_axi_rresp   : out   std_logic_vector(1 downto 0);
-    s_axi_rvalid  : out   std_logic;
-    s_axi_rready  : in    std_logic;
+    -- register accesses (fastnms_axil_slave)
+    wr_en    : in    std_logic;
+    wr_index : in    unsigned(REG_ADDR_WIDTH - 3 downto 0);
+    wr_data  : in    std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+    wr_strb  : in    std_logic_vector(REG_DATA_WIDTH / 8 - 1 downto 0);
+    wr_done  : out   std_logic;
+    rd_en    : in    std_logic;
+    rd_index : in    unsigned(REG_ADDR_WIDTH - 3 downto 0);
+    rd_data  : out   std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
+    rd_done  : out   std_logic;
     -- control
     enable        : out   std_logic;
+    live          : out   std_logic;
     soft_reset    : out   std_logic; -- one-clock pulse
-    soft_busy     : in    std_logic; -- read back as CTRL.SOFT_RESET
+    soft_busy     : in    std_logic; -- read back as CMD.SOFT_RESET
     cfg_pending   : out   std_logic;
     cfg_apply     : in    std_logic;
     cfg_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
@@ -74,6 +70,8 @@ entity fastnms_axi_regs is
     evt_sof_missing : in    std_logic;
     evt_sof_early   : in    std_logic;
     evt_overflow    : in    std_logic;
+    evt_dropped     : in    std_logic;
+    evt_stall       : in    std_logic;
     out_record      : in    std_logic;
     out_last        : in    std_logic;
     interrupt       : out   std_logic
@@ -82,9 +80,7 @@ end entity fastnms_axi_regs;
 
 architecture rtl of fastnms_axi_regs is
 
-  constant INDEX_BITS : positive                     := REG_ADDR_WIDTH - 2;
-  constant OKAY       : std_logic_vector(1 downto 0) := "00";
-  constant SLVERR     : std_logic_vector(1 downto 0) := "10";
+  constant CMD_KEY_VALUE : natural := 16#5A#;
 
   subtype word_t is std_logic_vector(REG_DATA_WIDTH - 1 downto 0);
 
@@ -169,45 +165,36 @@ architecture rtl of fastnms_axi_regs is
   constant BUILD_WORD   : word_t := field(CORNER_FIFO_DEPTH, BUILD_FIFO_DEPTH_LSB, BUILD_FIFO_DEPTH_WIDTH) or
                                     field(boolean'pos(SCORE_VIDEO), BUILD_SCORE_VIDEO, 1);
 
-  -- Write channel.
-  type write_state_t is (w_idle, w_decode, w_execute, w_respond);
+  -- Write pipeline: decoded (w_sel, every clock from the stable index), then
+  -- wr_en -> merged -> flags1 -> execute (= wr_done).
+  signal w_sel    : sel_t;
+  signal w_merged : std_logic;
+  signal w_flags1 : std_logic;
+  signal do_write : std_logic;
+  signal w_data   : word_t; -- the write's data, strobed bytes only
+  signal w_byte   : std_logic_vector(3 downto 0);
+  signal w_width  : word_t; -- WIDTH and HEIGHT after the merge
+  signal w_height : word_t;
+  -- Clamping flags of the merged WIDTH and HEIGHT, in two steps.
+  signal wd_high    : std_logic;
+  signal wd_low_7   : std_logic;
+  signal wd_above   : std_logic;
+  signal ht_high    : std_logic;
+  signal ht_low_7   : std_logic;
+  signal ht_above   : std_logic;
+  signal wd_below_7 : std_logic;
+  signal wd_over    : std_logic;
+  signal ht_below_7 : std_logic;
+  signal ht_over    : std_logic;
 
-  signal w_state   : write_state_t;
-  signal aw_full   : std_logic;
-  signal aw_index  : unsigned(INDEX_BITS - 1 downto 0);
-  signal w_full    : std_logic;
-  signal w_data    : word_t;
-  signal w_strb_ok : std_logic;
-  signal w_sel     : sel_t; -- the register addressed (one-hot)
-  signal w_ok      : std_logic;
-  -- Clamping flags of the written value, and the halves they come from.
-  signal w_high    : std_logic;
-  signal w_low_7   : std_logic;
-  signal w_low_w   : std_logic;
-  signal w_low_h   : std_logic;
-  signal w_below_7 : std_logic;
-  signal w_above_w : std_logic;
-  signal w_above_h : std_logic;
-  signal b_valid   : std_logic;
-  signal b_resp    : std_logic_vector(1 downto 0);
-  signal do_write  : std_logic;
-
-  -- Read channel.
-  type read_state_t is (r_idle, r_decode, r_respond);
-
-  signal r_state  : read_state_t;
-  signal ar_full  : std_logic;
-  signal ar_index : unsigned(INDEX_BITS - 1 downto 0);
-  signal r_sel    : sel_t;
-  signal r_ok     : std_logic;
-  signal r_valid  : std_logic;
-  signal r_data   : word_t;
-  signal r_resp   : std_logic_vector(1 downto 0);
-  signal words    : words_t;
+  -- Read: decoded every clock from the stable index.
+  signal r_sel : sel_t;
+  signal words : words_t;
 
   -- Registers.
   signal enable_r      : std_logic;
   signal irq_enable    : std_logic;
+  signal live_r        : std_logic;
   signal soft_pulse    : std_logic;
   signal pending       : std_logic;
   signal thr_shadow    : unsigned(7 downto 0);
@@ -220,14 +207,19 @@ architecture rtl of fastnms_axi_regs is
   signal events        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal clear_mask    : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal busy_r        : std_logic;
+  signal key_ok        : std_logic;
 
   -- Frame statistics.
   signal rec_pulse    : std_logic;
   signal last_pulse   : std_logic;
   signal done_pulse   : std_logic; -- the clock after last_pulse
+  signal drop_pulse   : std_logic;
+  signal stall_pulse  : std_logic;
   signal corners      : unsigned(31 downto 0);
   signal frames       : unsigned(31 downto 0);
   signal corner_count : unsigned(31 downto 0);
+  signal dropped      : unsigned(31 downto 0);
+  signal stalls       : unsigned(31 downto 0);
 
 begin
 
@@ -238,123 +230,66 @@ begin
     report "fastnms_axi_regs: CORNER_FIFO_DEPTH must be below 65536"
     severity failure;
 
-  -- ---- write channel ---------------------------------------------------------
+  -- ---- write pipeline ----------------------------------------------------------
 
-  -- No ready during reset: a channel taken then would be lost.
-  s_axi_awready <= not aw_full and not rst;
-  s_axi_wready  <= not w_full and not rst;
-  s_axi_bvalid  <= b_valid;
-  s_axi_bresp   <= b_resp;
-  do_write      <= to_sl(w_state = w_execute) and w_ok;
-
-  write_channel : process (clk) is
+  write_pipeline : process (clk) is
   begin
 
     if rising_edge(clk) then
-      if s_axi_awvalid = '1' and aw_full = '0' then
-        aw_full  <= '1';
-        aw_index <= unsigned(s_axi_awaddr(REG_ADDR_WIDTH - 1 downto 2));
-      end if;
-      if s_axi_wvalid = '1' and w_full = '0' then
-        w_full    <= '1';
-        w_data    <= s_axi_wdata;
-        w_strb_ok <= and s_axi_wstrb;
-      end if;
-
-      -- (if/elsif, not case: GHDL writes a case as a latch-like Verilog mux)
-      if w_state = w_idle then
-        if aw_full = '1' and w_full = '1' then
-          w_state <= w_decode;
-        end if;
-      elsif w_state = w_decode then
-        w_state <= w_execute;
-      elsif w_state = w_execute then
-        w_state <= w_respond;
-        b_valid <= '1';
-        b_resp  <= SLVERR;
-        if w_ok = '1' then
-          b_resp <= OKAY;
-        end if;
-        aw_full <= '0';
-        w_full  <= '0';
-      elsif s_axi_bready = '1' then
-        b_valid <= '0';
-        w_state <= w_idle;
-      end if;
-
-      -- Decoded one clock ahead of the write itself.
       for i in 0 to REG_COUNT - 1 loop
-        w_sel(i) <= to_sl(aw_index = i);
+        w_sel(i) <= to_sl(wr_index = i);
+        r_sel(i) <= to_sl(rd_index = i);
       end loop;
-      w_ok <= to_sl(aw_index < REG_COUNT) and w_strb_ok;
-      -- The clamping flags in two steps (ready by the execute clock).
-      w_high    <= or w_data(REG_DATA_WIDTH - 1 downto 16);
-      w_low_7   <= not at_least(unsigned(w_data(15 downto 0)), 7);
-      w_low_w   <= at_least(unsigned(w_data(15 downto 0)), MAX_WIDTH + 1);
-      w_low_h   <= at_least(unsigned(w_data(15 downto 0)), MAX_HEIGHT + 1);
-      w_below_7 <= w_low_7 and not w_high;
-      w_above_w <= w_low_w or w_high;
-      w_above_h <= w_low_h or w_high;
 
-      if rst = '1' then
-        w_state  <= w_idle;
-        aw_full  <= '0';
-        aw_index <= (others => '0'); -- decoded on every clock
-        w_full   <= '0';
-        b_valid  <= '0';
-      end if;
-    end if;
-
-  end process write_channel;
-
-  -- ---- read channel ----------------------------------------------------------
-
-  s_axi_arready <= not ar_full and not rst;
-  s_axi_rvalid  <= r_valid;
-  s_axi_rdata   <= r_data;
-  s_axi_rresp   <= r_resp;
-
-  read_channel : process (clk) is
-  begin
-
-    if rising_edge(clk) then
-      if s_axi_arvalid = '1' and ar_full = '0' then
-        ar_full  <= '1';
-        ar_index <= unsigned(s_axi_araddr(REG_ADDR_WIDTH - 1 downto 2));
+      -- The bytes not strobed: zero in w_data, the old value in WIDTH and
+      -- HEIGHT (whose other bits read 0).
+      w_merged <= wr_en;
+      if wr_en = '1' then
+        for b in 0 to 3 loop
+          w_byte(b) <= wr_strb(b);
+          if wr_strb(b) = '1' then
+            w_data(8 * b + 7 downto 8 * b)   <= wr_data(8 * b + 7 downto 8 * b);
+            w_width(8 * b + 7 downto 8 * b)  <= wr_data(8 * b + 7 downto 8 * b);
+            w_height(8 * b + 7 downto 8 * b) <= wr_data(8 * b + 7 downto 8 * b);
+          else
+            w_data(8 * b + 7 downto 8 * b)   <= (others => '0');
+            w_width(8 * b + 7 downto 8 * b)  <= words(REG_WIDTH)(8 * b + 7 downto 8 * b);
+            w_height(8 * b + 7 downto 8 * b) <= words(REG_HEIGHT)(8 * b + 7 downto 8 * b);
+          end if;
+        end loop;
       end if;
 
-      for i in 0 to REG_COUNT - 1 loop
-        r_sel(i) <= to_sl(ar_index = i);
-      end loop;
-      r_ok <= to_sl(ar_index < REG_COUNT);
+      w_flags1 <= w_merged;
+      wd_high  <= or w_width(REG_DATA_WIDTH - 1 downto 16);
+      wd_low_7 <= not at_least(unsigned(w_width(15 downto 0)), 7);
+      wd_above <= at_least(unsigned(w_width(15 downto 0)), MAX_WIDTH + 1);
+      ht_high  <= or w_height(REG_DATA_WIDTH - 1 downto 16);
+      ht_low_7 <= not at_least(unsigned(w_height(15 downto 0)), 7);
+      ht_above <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
 
-      if r_state = r_idle then
-        if ar_full = '1' then
-          r_state <= r_decode;
-        end if;
-      elsif r_state = r_decode then
-        r_data <= selected(words, r_sel);
-        r_resp <= SLVERR;
-        if r_ok = '1' then
-          r_resp <= OKAY;
-        end if;
-        r_valid <= '1';
-        ar_full <= '0';
-        r_state <= r_respond;
-      elsif s_axi_rready = '1' then
-        r_valid <= '0';
-        r_state <= r_idle;
+      do_write   <= w_flags1;
+      wd_below_7 <= wd_low_7 and not wd_high;
+      wd_over    <= wd_above or wd_high;
+      ht_below_7 <= ht_low_7 and not ht_high;
+      ht_over    <= ht_above or ht_high;
+      key_ok     <= to_sl(unsigned(w_data(CMD_KEY_LSB + CMD_KEY_WIDTH - 1 downto CMD_KEY_LSB)) = CMD_KEY_VALUE);
+
+      rd_done <= rd_en;
+      if rd_en = '1' then
+        rd_data <= selected(words, r_sel);
       end if;
 
       if rst = '1' then
-        r_state  <= r_idle;
-        ar_full  <= '0';
-        ar_index <= (others => '0'); -- decoded on every clock
-        r_valid  <= '0';
+        w_merged <= '0';
+        w_flags1 <= '0';
+        do_write <= '0';
+        rd_done  <= '0';
       end if;
     end if;
 
-  end process read_channel;
+  end process write_pipeline;
+
+  wr_done <= do_write;
 
   -- ---- registers -------------------------------------------------------------
 
@@ -377,30 +312,33 @@ begin
       soft_pulse <= '0';
 
       if do_write = '1' then
-        if w_sel(REG_CTRL) = '1' then
+        if w_sel(REG_CTRL) = '1' and w_byte(0) = '1' then
           enable_r   <= w_data(CTRL_ENABLE);
           irq_enable <= w_data(CTRL_IRQ_ENABLE);
-          soft_pulse <= w_data(CTRL_SOFT_RESET);
+          live_r     <= w_data(CTRL_LIVE);
         end if;
-        if w_sel(REG_THRESHOLD) = '1' then
+        if w_sel(REG_CMD) = '1' then
+          soft_pulse <= w_data(CMD_SOFT_RESET) and key_ok;
+        end if;
+        if w_sel(REG_THRESHOLD) = '1' and w_byte(0) = '1' then
           thr_shadow <= unsigned(w_data(THRESHOLD_VALUE_WIDTH - 1 downto THRESHOLD_VALUE_LSB));
         end if;
         if w_sel(REG_WIDTH) = '1' then
-          if w_below_7 = '1' then
+          if wd_below_7 = '1' then
             width_shadow <= to_unsigned(7, width_t'length);
-          elsif w_above_w = '1' then
+          elsif wd_over = '1' then
             width_shadow <= to_unsigned(MAX_WIDTH, width_t'length);
           else
-            width_shadow <= unsigned(w_data(width_t'range));
+            width_shadow <= unsigned(w_width(width_t'range));
           end if;
         end if;
         if w_sel(REG_HEIGHT) = '1' then
-          if w_below_7 = '1' then
+          if ht_below_7 = '1' then
             height_shadow <= to_unsigned(7, height_t'length);
-          elsif w_above_h = '1' then
+          elsif ht_over = '1' then
             height_shadow <= to_unsigned(MAX_HEIGHT, height_t'length);
           else
-            height_shadow <= unsigned(w_data(height_t'range));
+            height_shadow <= unsigned(w_height(height_t'range));
           end if;
         end if;
       end if;
@@ -412,8 +350,8 @@ begin
         pending       <= '0';
       end if;
       -- A write on the clock of an apply stays pending for the next one.
-      if do_write = '1' and (w_sel(REG_THRESHOLD) = '1' or w_sel(REG_WIDTH) = '1' or
-                             w_sel(REG_HEIGHT) = '1') then
+      if do_write = '1' and (or w_byte) = '1' and
+         (w_sel(REG_THRESHOLD) = '1' or w_sel(REG_WIDTH) = '1' or w_sel(REG_HEIGHT) = '1') then
         pending <= '1';
       end if;
 
@@ -424,6 +362,7 @@ begin
       if rst = '1' then
         enable_r      <= CTRL_ENABLE_RESET;
         irq_enable    <= CTRL_IRQ_ENABLE_RESET;
+        live_r        <= CTRL_LIVE_RESET;
         soft_pulse    <= '0';
         pending       <= '0';
         thr_shadow    <= unsigned(THRESHOLD_VALUE_RESET);
@@ -440,6 +379,7 @@ begin
   end process registers;
 
   enable        <= enable_r;
+  live          <= live_r;
   soft_reset    <= soft_pulse;
   cfg_pending   <= pending;
   cfg_threshold <= thr_active;
@@ -452,9 +392,11 @@ begin
   begin
 
     if rising_edge(clk) then
-      rec_pulse  <= out_record;
-      last_pulse <= out_last;
-      done_pulse <= last_pulse;
+      rec_pulse   <= out_record;
+      last_pulse  <= out_last;
+      done_pulse  <= last_pulse;
+      drop_pulse  <= evt_dropped;
+      stall_pulse <= evt_stall;
       if done_pulse = '1' then
         corner_count <= corners;
       end if;
@@ -463,6 +405,8 @@ begin
         rec_pulse    <= '0';
         last_pulse   <= '0';
         done_pulse   <= '0';
+        drop_pulse   <= '0';
+        stall_pulse  <= '0';
         corner_count <= (others => '0');
       end if;
     end if;
@@ -498,16 +442,42 @@ begin
       value => frames
     );
 
+  dropped_counter : entity work.fastnms_counter
+    generic map (
+      WIDTH   => 32,
+      SEGMENT => 12
+    )
+    port map (
+      clk   => clk,
+      rst   => rst,
+      clear => '0',
+      step  => drop_pulse,
+      value => dropped
+    );
+
+  stall_counter : entity work.fastnms_counter
+    generic map (
+      WIDTH   => 32,
+      SEGMENT => 12
+    )
+    port map (
+      clk   => clk,
+      rst   => rst,
+      clear => '0',
+      step  => stall_pulse,
+      value => stalls
+    );
+
   -- ---- read values -----------------------------------------------------------
 
   words <=
   (
     REG_ID           => ID_MAGIC_RESET,
     REG_VERSION      => VERSION_WORD,
-    REG_CTRL         => place(enable_r, CTRL_ENABLE) or place(soft_busy,
-                                                               CTRL_SOFT_RESET) or
-    place(irq_enable,
-           CTRL_IRQ_ENABLE),
+    REG_CTRL         => place(enable_r, CTRL_ENABLE) or place(irq_enable,
+                                                               CTRL_IRQ_ENABLE) or
+    place(live_r,
+           CTRL_LIVE),
     REG_STATUS       => place(busy_r, STATUS_BUSY) or place(sticky,
                                                              STATUS_FRAME_DONE),
     REG_THRESHOLD    => std_logic_vector(resize(thr_shadow, REG_DATA_WIDTH)),
@@ -517,7 +487,10 @@ begin
     REG_CORNER_COUNT => std_logic_vector(corner_count),
     REG_FRAME_COUNT  => std_logic_vector(frames),
     REG_MAX_SIZE     => MAX_WORD,
-    REG_BUILD        => BUILD_WORD
+    REG_BUILD        => BUILD_WORD,
+    REG_CMD          => place(soft_busy, CMD_SOFT_RESET),
+    REG_DROPPED      => std_logic_vector(dropped),
+    REG_INPUT_STALLS => std_logic_vector(stalls)
   );
 
 end architecture rtl;

@@ -10,9 +10,9 @@ library ieee;
 
 package fastnms_regs_pkg is
 
-  constant REG_ADDR_WIDTH : positive := 8;
+  constant REG_ADDR_WIDTH : positive := 12;
   constant REG_DATA_WIDTH : positive := 32;
-  constant REG_COUNT      : positive := 12;
+  constant REG_COUNT      : positive := 15;
 
   -- Word indices.
   constant REG_ID           : natural := 0;
@@ -27,6 +27,9 @@ package fastnms_regs_pkg is
   constant REG_FRAME_COUNT  : natural := 9;
   constant REG_MAX_SIZE     : natural := 10;
   constant REG_BUILD        : natural := 11;
+  constant REG_CMD          : natural := 12;
+  constant REG_DROPPED      : natural := 13;
+  constant REG_INPUT_STALLS : natural := 14;
 
   -- ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
   constant ID_MAGIC_LSB   : natural                       := 0;
@@ -39,18 +42,18 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"01";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"02";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";
 
-  -- CTRL: Control.
+  -- CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
   constant CTRL_ENABLE           : natural   := 0;
   constant CTRL_ENABLE_RESET     : std_logic := '1';
-  constant CTRL_SOFT_RESET       : natural   := 1;
-  constant CTRL_SOFT_RESET_RESET : std_logic := '0';
   constant CTRL_IRQ_ENABLE       : natural   := 2;
   constant CTRL_IRQ_ENABLE_RESET : std_logic := '0';
+  constant CTRL_LIVE             : natural   := 3;
+  constant CTRL_LIVE_RESET       : std_logic := '0';
 
   -- STATUS: Status; the sticky bits are cleared by writing 1.
   constant STATUS_BUSY              : natural   := 0;
@@ -115,6 +118,27 @@ package fastnms_regs_pkg is
   constant BUILD_FIFO_DEPTH_WIDTH : positive := 16;
   constant BUILD_SCORE_VIDEO      : natural  := 16;
 
+  -- CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits
+  -- 31:24, strobed), so a read-modify-write or a stray write cannot trigger one.
+  constant CMD_SOFT_RESET       : natural                      := 0;
+  constant CMD_SOFT_RESET_RESET : std_logic                    := '0';
+  constant CMD_KEY_LSB          : natural                      := 24;
+  constant CMD_KEY_WIDTH        : positive                     := 8;
+  constant CMD_KEY_RESET        : std_logic_vector(7 downto 0) := x"00";
+
+  -- DROPPED: Records dropped because the corner FIFO was full with CTRL.LIVE = 1, since reset
+  -- (wraps). A frame's last record counts too: that frame then has no LAST beat and the next
+  -- LAST record carries OVERFLOW.
+  constant DROPPED_VALUE_LSB   : natural                       := 0;
+  constant DROPPED_VALUE_WIDTH : positive                      := 32;
+  constant DROPPED_VALUE_RESET : std_logic_vector(31 downto 0) := x"00000000";
+
+  -- INPUT_STALLS: Clocks in which s_axis_video_tvalid was 1 and s_axis_video_tready 0 (a pixel
+  -- offered and refused), since reset (wraps).
+  constant INPUT_STALLS_VALUE_LSB   : natural                       := 0;
+  constant INPUT_STALLS_VALUE_WIDTH : positive                      := 32;
+  constant INPUT_STALLS_VALUE_RESET : std_logic_vector(31 downto 0) := x"00000000";
+
   -- The corner record (tdata of m_axis_corners).
   constant REC_WIDTH       : positive := 64;
   constant REC_X_LSB       : natural  := 0;
@@ -126,5 +150,6 @@ package fastnms_regs_pkg is
   constant REC_EMPTY       : natural  := 48;
   constant REC_LAST        : natural  := 49;
   constant REC_ABORTED     : natural  := 50;
+  constant REC_OVERFLOW    : natural  := 51;
 
 end package fastnms_regs_pkg;

@@ -39,14 +39,17 @@ def test_axi_frames(request, score, nms):
 @pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "region4")])
 def test_axi_robustness(request, score, nms):
     """Malformed frames, aresetn and soft reset mid-frame, interrupt, enable,
-    the corner FIFO filling. With the region NMS too: it relies on the
-    detector's stream being well formed whatever the input (its in_sof
-    assertion would stop the simulation)."""
+    the corner FIFO filling, VALIDs low in reset, the live-camera mode. With the
+    region NMS too: it relies on the detector's stream being well formed
+    whatever the input (its in_sof assertion would stop the simulation)."""
     run_cocotb(
         "fastnms_axi",
         "axi_tb",
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="malformed_then_good,reset_mid_frame,interrupt_and_enable,fifo_full",
+        testcase=(
+            "malformed_then_good,reset_mid_frame,interrupt_and_enable,fifo_full,"
+            "valids_low_in_reset,live_mode"
+        ),
         name=request.node.nodeid,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
     )

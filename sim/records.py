@@ -1,0 +1,116 @@
+"""The corner records of m_axis_corners (64-bit words) decoded into frames of corners:
+the Python twin of the C decoder in sw/fastnms.c, with the same rules.
+
+A frame is the records up to and including one with LAST. Every record that is not
+EMPTY is a corner (x, y, score), an ABORTED one included (the record the soft reset
+closed the frame with). EMPTY is the only record of a frame without corners, with
+LAST and x = y = score = 0; with CTRL.LIVE = 1, records of earlier frames whose LAST
+record was dropped may precede it, and the LAST record then carries OVERFLOW. A
+record that breaks these rules marks its frame `malformed` (decoding goes on; the
+next LAST ends the frame). Bits above OVERFLOW are reserved and ignored.
+
+    frames = decode_records(words)          # all at once
+    decoder = RecordDecoder()               # or buffer by buffer
+    for buffer in buffers:
+        for frame in decoder.feed(buffer): ...
+    tail = decoder.flush()                  # a frame without LAST, or None
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from . import regs
+
+Corner = tuple[int, int, int]
+
+_FIELDS = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask
+
+
+@dataclass
+class Frame:
+    index: int  # frames delivered by the decoder before this one
+    first_word: int  # position of the frame's first record in the whole stream
+    corners: list[Corner] = field(default_factory=list)  # (x, y, score), in output order
+    records: int = 0  # record words of the frame, the EMPTY record included
+    empty: bool = False  # ended by the EMPTY record
+    aborted: bool = False  # a soft reset cut the frame
+    overflow: bool = False  # records of this frame, or whole frames before it, were dropped
+    malformed: bool = False  # a record broke the format
+    complete: bool = True  # False: the stream ended before the frame's LAST record
+
+    @property
+    def flags(self) -> list[str]:
+        """The names of the flags that are set, in the order of the C decoder's bits."""
+        names = ("empty", "aborted", "overflow", "incomplete", "malformed")
+        values = (self.empty, self.aborted, self.overflow, not self.complete, self.malformed)
+        return [n for n, v in zip(names, values, strict=True) if v]
+
+
+class RecordDecoder:
+    """Decodes a record stream fed in pieces; a frame may span several pieces."""
+
+    def __init__(self) -> None:
+        self.position = 0  # words fed so far
+        self.frames = 0  # frames delivered so far
+        self._frame: Frame | None = None  # the frame in progress
+
+    @property
+    def pending(self) -> int:
+        """Records of the frame in progress (0 between frames)."""
+        return self._frame.records if self._frame else 0
+
+    def feed(self, words: Iterable[int]) -> list[Frame]:
+        """The frames that end in `words` (each word an unsigned 64-bit integer)."""
+        done = []
+        for word in words:
+            word = int(word)
+            if not 0 <= word < 1 << 64:
+                raise ValueError(f"record word {word:#x} is not a 64-bit unsigned value")
+            if self._take(word):
+                done.append(self._deliver(complete=True))
+        return done
+
+    def flush(self) -> Frame | None:
+        """The frame in progress (complete=False), if any; the next word starts a new frame."""
+        return self._deliver(complete=False) if self._frame else None
+
+    def _take(self, word: int) -> bool:
+        if self._frame is None:
+            self._frame = Frame(index=self.frames, first_word=self.position)
+        frame = self._frame
+        self.position += 1
+        frame.records += 1
+        empty, last = bool(regs.REC_EMPTY.get(word)), bool(regs.REC_LAST.get(word))
+        aborted, overflow = bool(regs.REC_ABORTED.get(word)), bool(regs.REC_OVERFLOW.get(word))
+        if empty:
+            frame.empty = True
+            if not last or aborted or word & _FIELDS or (frame.records != 1 and not overflow):
+                frame.malformed = True
+        else:
+            frame.corners.append(
+                (regs.REC_X.get(word), regs.REC_Y.get(word), regs.REC_SCORE.get(word))
+            )
+        frame.aborted |= aborted
+        frame.overflow |= overflow
+        if (aborted or overflow) and not last:
+            frame.malformed = True
+        return last
+
+    def _deliver(self, complete: bool) -> Frame:
+        frame = self._frame
+        assert frame is not None
+        frame.complete = complete
+        self._frame = None
+        self.frames += 1
+        return frame
+
+
+def decode_records(words: Iterable[int]) -> list[Frame]:
+    """Every frame of a record stream; a last frame without LAST is included with
+    complete=False."""
+    decoder = RecordDecoder()
+    frames = decoder.feed(words)
+    tail = decoder.flush()
+    return frames if tail is None else [*frames, tail]

@@ -1,0 +1,280 @@
+"""The two record decoders, C (sw/fastnms.c, through sw/tests/decode_records.c) and
+Python (fastnms.sim.records), on the records the RTL emits (fastnms_axi on the fast
+engine) against each other and the golden model, and on hand-built streams: pieces,
+EMPTY, ABORTED and OVERFLOW frames, a stream that stops mid-frame, corner storage
+too small, malformed records, random words."""
+
+from __future__ import annotations
+
+import subprocess
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fastnms.golden.model import detect
+from fastnms.sim import regs
+from fastnms.sim.records import Frame, RecordDecoder, decode_records
+from fastnms.sim.run import SimResult, run_rtl
+from fastnms.testing import images as testimages
+from fastnms.testing.fixtures import SEED
+
+# The order of the C decoder's flag bits (FASTNMS_FRAME_*) in its output.
+C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated"]
+
+
+def rec(x=0, y=0, score=0, *, last=False, empty=False, aborted=False, overflow=False) -> int:
+    """One record word."""
+    word = x << regs.REC_X.lsb | y << regs.REC_Y.lsb | score << regs.REC_SCORE.lsb
+    for flag, fld in [
+        (last, regs.REC_LAST),
+        (empty, regs.REC_EMPTY),
+        (aborted, regs.REC_ABORTED),
+        (overflow, regs.REC_OVERFLOW),
+    ]:
+        word |= int(flag) << fld.lsb
+    return word
+
+
+EMPTY = rec(last=True, empty=True)
+
+
+def render(frames: list[Frame], capacity: int | None = None) -> str:
+    """Frames in the C test program's format, with room for `capacity` corners per frame."""
+    lines = []
+    for f in frames:
+        stored = len(f.corners) if capacity is None else min(capacity, len(f.corners))
+        flags = f.flags + (["truncated"] if stored < len(f.corners) else [])
+        lines.append(
+            f"frame {f.index} first {f.first_word} records {f.records} corners {len(f.corners)}"
+            f" stored {stored} flags {','.join(sorted(flags, key=C_FLAGS.index)) or '-'}"
+        )
+        lines += [f"{x} {y} {s}" for x, y, s in f.corners[:stored]]
+    return "".join(line + "\n" for line in lines)
+
+
+def run_c(program: Path, tmp_path: Path, words, *args) -> str:
+    path = tmp_path / "records.bin"
+    np.asarray(words, dtype="<u8").tofile(path)
+    if program.name == "decode_records" and args and args[0] == "--all":
+        cmd = [program, "--all", path, *map(str, args[1:])]
+    else:
+        cmd = [program, path, *map(str, args)]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=30)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return result.stdout
+
+
+def c_stream(c_programs, tmp_path, words, chunk=0, capacity=None) -> str:
+    """The C decoder fed `chunk` words at a time (0: all), `capacity` corners of room."""
+    args = [chunk or len(words) or 1] + ([] if capacity is None else [capacity])
+    return run_c(c_programs["decode_records"], tmp_path, words, *args)
+
+
+def py_stream(words, chunk=0) -> list[Frame]:
+    decoder = RecordDecoder()
+    words = list(words)
+    chunk = chunk or len(words) or 1
+    frames = []
+    for at in range(0, len(words), chunk):
+        frames += decoder.feed(words[at : at + chunk])
+    tail = decoder.flush()
+    return frames if tail is None else [*frames, tail]
+
+
+def decoded(c_programs, tmp_path, words, chunks=(0, 1, 2, 3)) -> list[Frame]:
+    """The Python decoder's frames, after checking that the C decoder and the Python
+    one fed in pieces give the same."""
+    frames = decode_records(words)
+    expected = render(frames)
+    for chunk in chunks:
+        assert render(py_stream(words, chunk)) == expected, f"python, chunk {chunk}"
+        assert c_stream(c_programs, tmp_path, words, chunk) == expected, f"C, chunk {chunk}"
+    return frames
+
+
+# ---- records the RTL emitted ----------------------------------------------------------
+
+
+@pytest.fixture(scope="module", params=[("opencv", "3x3"), ("sad", "region4")], ids="-".join)
+def rtl_run(request) -> tuple[str, str, list, SimResult]:
+    """Three 32x24 frames back to back through fastnms_axi (the fast engine): blurred
+    noise, a flat frame (no corner: the EMPTY record), blurred noise again."""
+    score, nms = request.param
+    rng = np.random.default_rng(SEED ^ zlib.crc32(b"sw/tests records"))
+    frames = [
+        (testimages.blurred_noise(rng, 32, 24), 6),
+        (np.full((24, 32), 97, dtype=np.uint8), 20),
+        (testimages.blurred_noise(rng, 32, 24), 10),
+    ]
+    return score, nms, frames, run_rtl(frames, score, nms)
+
+
+def test_rtl_records_decode_to_the_golden_corners(rtl_run, c_programs, tmp_path):
+    score, nms, frames_in, result = rtl_run
+    words = np.concatenate([f.words for f in result.frames])
+    frames = decode_records(words)
+    assert len(frames) == len(frames_in)
+    for i, ((img, t), got, sim) in enumerate(zip(frames_in, frames, result.frames, strict=True)):
+        want = [tuple(int(v) for v in r) for r in detect(img, t, score, nms)]
+        assert sorted(got.corners, key=lambda c: (c[1], c[0])) == want, f"frame {i}"
+        assert got.complete and not (got.aborted or got.overflow or got.malformed)
+        assert got.empty == (not want) and got.records == len(sim.words) == max(1, len(want))
+    assert frames[1].empty and frames[1].corners == []
+    assert sum(len(f.corners) for f in frames) >= 10, "too few corners for a test"
+    # The C decoder, with the stream in one piece and cut anywhere.
+    expected = render(frames)
+    for chunk in (0, 1, 5, 64):
+        assert c_stream(c_programs, tmp_path, words, chunk) == expected, f"chunk {chunk}"
+        assert render(py_stream(words, chunk)) == expected, f"chunk {chunk}"
+    total = sum(len(f.corners) for f in frames)
+    got = run_c(c_programs["decode_records"], tmp_path, words, "--all", 3, total)
+    assert got == expected + f"result 0 frames 3 corners {total}\n"
+
+
+# ---- hand-built streams -------------------------------------------------------------
+
+
+def test_no_records(c_programs, tmp_path):
+    assert decoded(c_programs, tmp_path, []) == []
+    got = run_c(c_programs["decode_records"], tmp_path, [], "--all", 0, 0)
+    assert got == "result 0 frames 0 corners 0\n"
+
+
+def test_frame_spanning_two_buffers(c_programs, tmp_path):
+    words = [rec(3, 3, 30), rec(9, 4, 40), rec(5, 7, 50), rec(8, 8, 60, last=True), EMPTY]
+    decoder = RecordDecoder()
+    assert decoder.feed(words[:2]) == [] and decoder.pending == 2
+    first, second = decoder.feed(words[2:])
+    assert decoder.pending == 0 and decoder.flush() is None
+    assert first.corners == [(3, 3, 30), (9, 4, 40), (5, 7, 50), (8, 8, 60)]
+    assert (first.index, first.first_word, first.records, first.flags) == (0, 0, 4, [])
+    assert (second.index, second.first_word, second.corners, second.flags) == (1, 4, [], ["empty"])
+    assert decoded(c_programs, tmp_path, words, chunks=(0, 1, 2, 3, 4)) == [first, second]
+
+
+def test_empty_frames(c_programs, tmp_path):
+    frames = decoded(c_programs, tmp_path, [EMPTY, EMPTY, rec(4, 5, 6, last=True), EMPTY])
+    assert [f.flags for f in frames] == [["empty"], ["empty"], [], ["empty"]]
+    assert [len(f.corners) for f in frames] == [0, 0, 1, 0]
+
+
+def test_aborted_frame(c_programs, tmp_path):
+    """A soft reset closes the frame with the record the packer held, marked ABORTED:
+    a corner like the others."""
+    words = [rec(3, 3, 21), rec(6, 3, 22, last=True, aborted=True), rec(4, 4, 23, last=True)]
+    first, second = decoded(c_programs, tmp_path, words)
+    assert first.aborted and first.corners == [(3, 3, 21), (6, 3, 22)] and not first.malformed
+    assert not second.aborted and second.corners == [(4, 4, 23)]
+
+
+def test_overflow_frames(c_programs, tmp_path):
+    """Live mode: a frame whose LAST record was dropped runs into the next one, whose
+    LAST record carries OVERFLOW; the next frame may be empty."""
+    words = [
+        rec(3, 3, 1),
+        rec(5, 9, 2),  # this frame's LAST record was dropped
+        rec(4, 3, 3, last=True, overflow=True),
+        rec(3, 3, 4),  # and again, before an empty frame
+        rec(last=True, empty=True, overflow=True),
+        EMPTY,
+    ]
+    merged, into_empty, empty = decoded(c_programs, tmp_path, words)
+    assert merged.overflow and merged.corners == [(3, 3, 1), (5, 9, 2), (4, 3, 3)]
+    assert into_empty.flags == ["empty", "overflow"] and into_empty.corners == [(3, 3, 4)]
+    assert empty.flags == ["empty"]
+
+
+def test_stream_ending_mid_frame(c_programs, tmp_path):
+    """The records after the last LAST are a frame too, reported incomplete, not lost;
+    the decoder takes the next word as a new frame."""
+    words = [rec(3, 3, 1, last=True), rec(7, 3, 2), rec(3, 8, 3)]
+    done, tail = decoded(c_programs, tmp_path, words)
+    assert done.complete and not tail.complete and tail.flags == ["incomplete"]
+    assert (tail.index, tail.first_word, tail.records) == (1, 1, 2)
+    assert tail.corners == [(7, 3, 2), (3, 8, 3)]
+    decoder = RecordDecoder()
+    assert len(decoder.feed(words)) == 1 and decoder.pending == 2
+    assert decoder.flush() == tail and decoder.flush() is None
+    (after,) = decoder.feed([EMPTY])
+    assert (after.index, after.first_word, after.flags) == (2, 3, ["empty"])
+
+
+def test_storage_too_small(c_programs, tmp_path):
+    """Stream: each frame keeps the corners that fit and is TRUNCATED; one shot: an
+    error with the sizes needed; never a write out of the arrays (the sanitizers watch)."""
+    words = [rec(3, 3 + i, 10 + i, last=i == 4) for i in range(5)]
+    words += [rec(3, 3, 7), rec(4, 4, 8, last=True), EMPTY]
+    frames = decode_records(words)
+    for capacity in (0, 1, 2, 5):
+        got = c_stream(c_programs, tmp_path, words, 3, capacity)
+        assert got == render(frames, capacity), f"capacity {capacity}"
+    assert "truncated" in c_stream(c_programs, tmp_path, words, 0, 2)
+
+    program = c_programs["decode_records"]
+    full = render(frames) + "result 0 frames 3 corners 7\n"
+    assert run_c(program, tmp_path, words, "--all", 3, 7) == full
+    got = run_c(program, tmp_path, words, "--all", 1, 7)
+    assert got == render(frames[:1]) + "result -2 frames 3 corners 7\n"
+    got = run_c(program, tmp_path, words, "--all", 3, 6)
+    lines = got.splitlines()
+    assert lines[-1] == "result -2 frames 3 corners 7"
+    assert "corners 2 stored 1 flags truncated" in lines[6]  # the second frame lost one
+    got = run_c(program, tmp_path, words, "--all", 0, 0)
+    assert got == "result -2 frames 3 corners 7\n"
+
+
+@pytest.mark.parametrize(
+    "words",
+    [
+        [rec(empty=True), rec(3, 3, 9, last=True)],  # EMPTY without LAST
+        [rec(3, 0, 0, last=True, empty=True)],  # EMPTY with a field set
+        [rec(3, 3, 9), EMPTY],  # EMPTY after a corner, without OVERFLOW
+        [rec(last=True, empty=True, aborted=True)],  # EMPTY and ABORTED
+        [rec(3, 3, 9, aborted=True), rec(4, 4, 9, last=True)],  # ABORTED without LAST
+        [rec(3, 3, 9, overflow=True), rec(4, 4, 9, last=True)],  # OVERFLOW without LAST
+    ],
+    ids=["empty-not-last", "empty-fields", "empty-after", "empty-aborted", "aborted", "overflow"],
+)
+def test_malformed_records(words, c_programs, tmp_path):
+    """Flagged in their frame; the next LAST ends it and the next frame is clean."""
+    frames = decoded(c_programs, tmp_path, [*words, rec(5, 5, 50, last=True)])
+    assert frames[0].malformed and frames[0].complete
+    assert frames[-1].corners == [(5, 5, 50)] and not frames[-1].malformed
+
+
+def test_reserved_bits_are_ignored(c_programs, tmp_path):
+    high = ((1 << 64) - 1) & ~((1 << (regs.REC_OVERFLOW.lsb + 1)) - 1)
+    frames = decoded(c_programs, tmp_path, [rec(3, 4, 5) | high, rec(6, 7, 8, last=True) | high])
+    frames += decoded(c_programs, tmp_path, [EMPTY | high])
+    assert [f.flags for f in frames] == [[], ["empty"]]
+    assert frames[0].corners == [(3, 4, 5), (6, 7, 8)]
+
+
+def test_python_rejects_words_out_of_range():
+    for word in (-1, 1 << 64):
+        with pytest.raises(ValueError):
+            RecordDecoder().feed([word])
+
+
+def test_random_words(rng, c_programs, tmp_path):
+    """Random streams: both decoders agree, whatever the pieces and the storage."""
+    for _ in range(4):
+        n = 1500
+        words = rng.integers(0, 1 << 16, (n, 3), dtype=np.uint64)
+        words = words[:, 0] | words[:, 1] << np.uint64(16) | words[:, 2] << np.uint64(32)
+        for fld, p in [
+            (regs.REC_LAST, 0.2),
+            (regs.REC_EMPTY, 0.1),
+            (regs.REC_ABORTED, 0.05),
+            (regs.REC_OVERFLOW, 0.05),
+        ]:
+            words |= (rng.random(n) < p).astype(np.uint64) << np.uint64(fld.lsb)
+        # a few clean EMPTY records, so that EMPTY frames are frequent
+        words[rng.random(n) < 0.05] = EMPTY
+        words = [int(w) for w in words]
+        frames = decode_records(words)
+        chunk, capacity = int(rng.integers(1, 40)), int(rng.integers(0, 6))
+        got = c_stream(c_programs, tmp_path, words, chunk, capacity)
+        assert got == render(frames, capacity), f"chunk {chunk}, capacity {capacity}"
+        assert render(py_stream(words, chunk)) == render(frames)
