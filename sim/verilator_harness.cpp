@@ -151,6 +151,9 @@ int main(int argc, char** argv) {
     bool video, video_stall, record, record_last, aw, w, b, ar, r;
     uint64_t record_word;
     uint32_t rdata;
+    bool record_valid;
+    uint32_t record_keep;
+    bool score_valid;
   };
   auto clock = [&]() {
     top->aclk = 0;
@@ -165,7 +168,10 @@ int main(int argc, char** argv) {
            top->s_axi_ctrl_arvalid && top->s_axi_ctrl_arready,
            top->s_axi_ctrl_rvalid && top->s_axi_ctrl_rready,
            top->m_axis_corners_tdata,
-           top->s_axi_ctrl_rdata};
+           top->s_axi_ctrl_rdata,
+           top->m_axis_corners_tvalid != 0,
+           top->m_axis_corners_tkeep,
+           top->m_axis_score_tvalid != 0};
     top->aclk = 1;
     top->eval();
     context->timeInc(1);
@@ -204,9 +210,29 @@ int main(int argc, char** argv) {
   std::time_t last_report = std::time(nullptr);
   const uint64_t stuck_limit = 1000000;  // clocks without any handshake: the IP is stuck
 
+  // The output rules of sim/axi_protocol.py that apply here (its other checks run
+  // under the cocotb engine): a record offered stays offered, unchanged, until
+  // taken; TKEEP all ones; TLAST equal to the record's LAST bit; no score video.
+  Seen before{};
+  auto check_outputs = [&](const Seen& s) {
+    if (before.record_valid && !before.record) {
+      if (!s.record_valid) fail("AXI protocol: m_axis_corners_tvalid fell before tready");
+      if (s.record_word != before.record_word || s.record_last != before.record_last)
+        fail("AXI protocol: a corner record changed before tready");
+    }
+    if (s.record_valid) {
+      if (s.record_keep != 0xFF) fail("AXI protocol: m_axis_corners_tkeep not all ones");
+      if (((s.record_word >> FASTNMS_REC_LAST_SHIFT) & 1) != (s.record_last ? 1u : 0u))
+        fail("AXI protocol: m_axis_corners_tlast differs from the record's LAST bit");
+    }
+    if (s.score_valid) fail("AXI protocol: m_axis_score_tvalid without SCORE_VIDEO");
+    before = s;
+  };
+
   while (true) {
     Seen s = clock();
     ++cycle;
+    check_outputs(s);
     bool progress = false;
     // ---- AXI4-Lite: one write at a time, address and data together -----------
     if (s.aw) aw_done = true;
