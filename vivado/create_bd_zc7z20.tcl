@@ -23,10 +23,12 @@
 #                    figures, not for booting a board.
 #   --out DIR        project directory (default build/vivado/zc7z20)
 #   --ip-repo DIR    the IP repository of package_ip.tcl (default build/vivado/ip)
-#   --fclk-mhz F     FCLK_CLK0 in MHz (default 142.857143): must be the IO PLL's
-#                    1000 MHz divided by an integer (an error otherwise, with
-#                    the nearest values), and the script stops if the PS
-#                    reports another frequency.
+#   --fclk-mhz F     FCLK_CLK0 in MHz (default 142.857143; 71.428571 with
+#                    --nms region4 or region8, whose region NMS reaches about
+#                    70 MHz, docs/results.md): must be the IO PLL's 1000 MHz
+#                    divided by an integer (an error otherwise, with the
+#                    nearest values), and the script stops if the PS reports
+#                    another frequency.
 #   --score S, --nms N   the IP's SCORE and NMS generics (default opencv, 3x3)
 #   --max-width W, --max-height H   (default 1920, 1080)
 #   --impl           also run synthesis, implementation and the bitstream,
@@ -47,7 +49,7 @@ set opts [fastnms::parse_args $argv [dict create \
     --board      {} \
     --out        [fastnms::path build vivado zc7z20] \
     --ip-repo    [fastnms::path build vivado ip] \
-    --fclk-mhz   [fastnms::fclk_mhz] \
+    --fclk-mhz   auto \
     --score      opencv \
     --nms        3x3 \
     --max-width  1920 \
@@ -63,6 +65,9 @@ if {$board eq ""} {
 }
 if {$board ni {zedboard zc702 none}} {
     error "create_bd: --board must be zedboard, zc702 or none, not '$board'"
+}
+if {[dict get $opts --fclk-mhz] eq "auto"} {
+    dict set opts --fclk-mhz [fastnms::fclk_mhz [dict get $opts --nms]]
 }
 if {[catch {fastnms::fclk_setting [dict get $opts --fclk-mhz]} fclk]} {
     error "create_bd: --fclk-mhz: $fclk"

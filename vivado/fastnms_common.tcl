@@ -244,11 +244,18 @@ proc fastnms::divisor_pair {divide} {
     return {}
 }
 
-# The default FCLK_CLK0 in MHz (io_pll_mhz / fclk_divide, 6 decimals).
-proc fastnms::fclk_mhz {} {
+# The default FCLK_CLK0 in MHz (io_pll_mhz / fclk_divide, 6 decimals). With
+# `nms` region4 or region8, half that (io_pll_mhz / (2 fclk_divide), 71.428571):
+# the region NMS reaches about 70 MHz (nextpnr ECP5-8, docs/results.md) and
+# has not been timed by Vivado; 1080p30 needs 62.2 Mpixel/s.
+proc fastnms::fclk_mhz {{nms 3x3}} {
     variable io_pll_mhz
     variable fclk_divide
-    return [format %.6f [expr {$io_pll_mhz / $fclk_divide}]]
+    set divide $fclk_divide
+    if {$nms in {region4 region8}} {
+        set divide [expr {2 * $fclk_divide}]
+    }
+    return [format %.6f [expr {$io_pll_mhz / $divide}]]
 }
 
 # The board part of the newest version among `parts` (vendor:board:part0:X.Y

@@ -124,7 +124,11 @@ def test_fclk_is_the_io_pll_divided_by_an_integer() -> None:
 def test_ooc_period_is_the_bd_clock() -> None:
     period = float(tcl("fastnms::ooc_period"))
     assert period == pytest.approx(1000 / float(tcl("fastnms::fclk_mhz")), abs=0.0005)
-    assert "--fclk-mhz   [fastnms::fclk_mhz]" in (VIVADO / "create_bd_zc7z20.tcl").read_text()
+    script = (VIVADO / "create_bd_zc7z20.tcl").read_text()
+    assert "[fastnms::fclk_mhz [dict get $opts --nms]]" in script
+    # The region NMS (about 70 MHz) gets half the clock: 1000 / 14 MHz.
+    assert tcl("fastnms::fclk_mhz region4") == tcl("fastnms::fclk_mhz region8") == "71.428571"
+    assert tcl("fastnms::fclk_mhz none") == tcl("fastnms::fclk_mhz 3x3") == "142.857143"
     assert re.search(r"\[get_ports aclk\]", XDC.read_text())
     assert "142.857 MHz" in XDC.read_text()
 
@@ -448,6 +452,16 @@ def test_create_bd_with_implementation() -> None:
         "create_bd_impl_fail", ["--board", "zc702", "--impl"], {"get_property PROGRESS": "0%"}
     )
     assert run.error and "synthesis failed" in run.error
+
+
+@needs_tcl
+def test_create_bd_region_nms_default_clock() -> None:
+    """With a region NMS (about 70 MHz) FCLK_CLK0 defaults to 1000 / 14 MHz."""
+    results = {"get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "71.428571"}
+    root, run = bd_run("create_bd_region", ["--board", "zc702", "--nms", "region8"], results)
+    run.assert_clean()
+    assert "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ 71.428571" in run.text
+    assert "CONFIG.NMS region8" in run.text
 
 
 @needs_tcl
