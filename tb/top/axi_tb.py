@@ -25,7 +25,7 @@ from cocotbext.axi import AxiResp, AxiStreamFrame
 from fastnms.golden.fast import fast_maps
 from fastnms.golden.model import detect
 from fastnms.sim import regs
-from fastnms.sim.driver import AxiTop, Record, decode, record_words, video_lines
+from fastnms.sim.driver import AxiTop, Record, decode, pauses, record_words, video_lines
 from fastnms.sim.records import decode_records
 from fastnms.testing import images as testimages
 
@@ -724,3 +724,117 @@ async def live_mode(dut):
     assert await tb.read(regs.INPUT_STALLS) == tb.input_stalls
     await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask)
     await tb.clear_status()
+
+
+class RegisterModel:
+    """What the registers of an idle top (no video) read after any writes: the
+    read/write fields with byte strobes, WIDTH/HEIGHT clamped after the byte merge,
+    MODE and the read-only registers fixed, STATUS and CMD reading 0."""
+
+    def __init__(self) -> None:
+        generics = all_generics()
+        self.values = {r.offset: regs.reset_value(n, generics) for n, r in regs.REGISTERS.items()}
+        self.rw_mask = {
+            r.offset: sum(f.mask for f in r.fields.values() if f.access == "rw")
+            for r in regs.REGISTERS.values()
+        }
+
+    def write(self, offset: int, data: int, strobe: int) -> None:
+        if offset not in self.values:
+            return
+        bytes_mask = sum(0xFF << 8 * b for b in range(4) if strobe >> b & 1)
+        if offset in (regs.WIDTH, regs.HEIGHT):
+            limit = MAX_WIDTH if offset == regs.WIDTH else MAX_HEIGHT
+            merged = (self.values[offset] & ~bytes_mask) | (data & bytes_mask)
+            if merged >> 16 == 0 and (merged & 0xFFFF) < 7:
+                merged = 7
+            elif merged >> 16 or merged > limit:
+                merged = limit
+            self.values[offset] = merged
+        elif offset != regs.MODE:
+            keep = self.rw_mask[offset] & bytes_mask
+            self.values[offset] = (self.values[offset] & ~keep) | (data & keep)
+
+    def read(self, offset: int) -> int | None:
+        """The value, or None for an address outside the map (SLVERR)."""
+        return self.values.get(offset)
+
+
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
+async def registers_random(dut):
+    """Random AXI4-Lite traffic against RegisterModel: writes of random data with
+    random byte strobes to any address of the 4 KiB segment (mostly mapped ones),
+    reads of any register between them, and all along, on the read channel, reads
+    of the registers that writes cannot change; B and R back-pressure. CMD writes
+    never carry the key (no soft reset)."""
+    tb = await TB.create(dut, 0, 0)
+    tb.axil.write_if.b_channel.set_pause_generator(pauses(tb.rng, 0.3))
+    tb.axil.read_if.r_channel.set_pause_generator(pauses(tb.rng, 0.3))
+    await tb.reset()
+    model = RegisterModel()
+    rng = tb.rng
+    mapped = sorted(model.values)
+
+    def address() -> int:
+        if rng.random() < 0.85:
+            return rng.choice(mapped)
+        return rng.randrange(0, 0x1000, 4)
+
+    async def reader(count: int) -> None:
+        for _ in range(count):
+            offset = address()
+            resp = await tb.axil.read(offset, 4)
+            want = model.read(offset)
+            if want is None:
+                assert resp.resp == AxiResp.SLVERR and resp.data == bytes(4), hex(offset)
+            else:
+                got = int.from_bytes(resp.data, "little")
+                assert resp.resp == AxiResp.OKAY, hex(offset)
+                assert got == want, f"read 0x{offset:03x}: 0x{got:08x}, model 0x{want:08x}"
+
+    fixed = [o for o in mapped if not model.rw_mask[o] and o not in (regs.STATUS, regs.CMD)]
+    done = False
+
+    async def fixed_reader() -> int:
+        count = 0
+        while not done:
+            offset = rng.choice(fixed + [0x100, 0xFFC])
+            resp = await tb.axil.read(offset, 4)
+            want = model.read(offset)
+            got = int.from_bytes(resp.data, "little")
+            assert (resp.resp == AxiResp.SLVERR) == (want is None), hex(offset)
+            assert got == (want or 0), f"read 0x{offset:03x}: 0x{got:08x}"
+            count += 1
+        return count
+
+    background = cocotb.start_soon(fixed_reader())
+    writes = 300
+    for _ in range(writes):
+        offset = address()
+        first = rng.randrange(4)
+        length = rng.randrange(1, 5 - first)
+        data = rng.getrandbits(32)
+        if offset == regs.CMD:
+            data &= ~(0xFF << regs.CMD_KEY.lsb)
+        if rng.random() < 0.3:  # small values: the clamping's lower end
+            data &= 0x0000000F
+        payload = data.to_bytes(4, "little")[first : first + length]
+        resp = await tb.axil.write(offset + first, payload)
+        strobe = ((1 << length) - 1) << first
+        if model.read(offset) is None:
+            assert resp.resp == AxiResp.SLVERR, hex(offset)
+        else:
+            assert resp.resp == AxiResp.OKAY, hex(offset)
+        model.write(offset, data, strobe)
+        if rng.random() < 0.3:
+            await reader(rng.randrange(1, 4))
+    done = True
+    concurrent = await background
+    assert concurrent > 20, f"only {concurrent} reads beside the writes"
+    await reader(100)
+    for offset in mapped:
+        resp = await tb.axil.read(offset, 4)
+        assert int.from_bytes(resp.data, "little") == model.read(offset), hex(offset)
+    dut._log.info(
+        "%d random writes, %d concurrent reads, every read equal to the model", writes, concurrent
+    )

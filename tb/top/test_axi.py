@@ -55,6 +55,18 @@ def test_axi_robustness(request, score, nms):
     )
 
 
+def test_axi_registers_random(request):
+    """Random AXI4-Lite writes (any address, random byte strobes) and concurrent
+    reads against a model of the register file, with B and R back-pressure."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="registers_random",
+        name=request.node.nodeid,
+    )
+
+
 def test_axi_throughput(request, tmp_path):
     """Clocks per frame without idles or stalls: one 64x48 frame, then three
     back to back."""
