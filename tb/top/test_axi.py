@@ -112,3 +112,18 @@ def test_axi_throughput_1920(request, tmp_path):
         env={"TB_FRAMES": "2", "TB_RESULTS": str(results)},
     )
     print("clocks to each frame's last record:", json.loads(results.read_text()))
+
+
+@pytest.mark.slow
+def test_axi_live_1920(request):
+    """The live-camera mode at full width: three 1920x40 noise frames at t = 0 into
+    the default 512-record FIFO with the corner sink stopped (no input stall,
+    DROPPED exact, OVERFLOW flags), then exact frames."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {"MAX_WIDTH": 1920, "MAX_HEIGHT": 40, "SCORE": "opencv", "NMS": "3x3"},
+        testcase="live_mode",
+        name=request.node.nodeid,
+        env={"TB_STALL": "0.2"},
+    )
