@@ -16,7 +16,10 @@
 --   with the output stalled it takes WORDS + 3 words (at least DEPTH);
 --   in_room2 = '1' on a clock means in_ready = '1' on the next clock too:
 --     room for this clock's word and the next one, for a producer with one
---     register stage after its decision.
+--     register stage after its decision;
+--   in_spare = '1' on a clock means that after a word written on it, in_ready
+--     stays '1' on every later clock until the next write: room for this
+--     word and one that may come any time later (never with WORDS < 8).
 -- A write while in_ready = '0' is ignored.
 --
 -- Logic depth: the pointers only address the RAM, and no two registers are
@@ -51,6 +54,7 @@ entity fastnms_fifo is
     in_valid  : in    std_logic;
     in_ready  : out   std_logic;
     in_room2  : out   std_logic;
+    in_spare  : out   std_logic;
     in_data   : in    std_logic_vector(WIDTH - 1 downto 0);
     out_valid : out   std_logic;
     out_ready : in    std_logic;
@@ -74,6 +78,7 @@ architecture rtl of fastnms_fifo is
   signal filled  : std_logic;                    -- a word is in the RAM for sure
   signal ready   : std_logic;
   signal room2   : std_logic;
+  signal spare   : std_logic;
   signal write   : std_logic;
   signal read_en : std_logic;                    -- the RAM's read register advances
   signal read    : std_logic;                    -- ... and takes a word
@@ -128,6 +133,9 @@ begin
       ready <= not (level(ADDR_BITS) or (and level(ADDR_BITS - 1 downto 1)));
       -- Room for the words of this clock and the next two: level <= WORDS - 4.
       room2 <= to_sl(level <= WORDS - 4);
+      -- A write now leaves level <= WORDS - 3 (in_ready) once the two writes
+      -- the level does not show yet are in: level <= WORDS - 6.
+      spare <= to_sl(to_integer(level) <= WORDS - 6);
       if read_en = '1' then
         q_valid <= filled;
       end if;
@@ -140,6 +148,7 @@ begin
         level   <= (others => '0');
         ready   <= '0';
         room2   <= '0';
+        spare   <= '0';
         q_valid <= '0';
         busy    <= '0';
       end if;
@@ -149,6 +158,7 @@ begin
 
   in_ready <= ready;
   in_room2 <= room2;
+  in_spare <= spare;
 
   ram : entity work.fastnms_ram_sdp
     generic map (

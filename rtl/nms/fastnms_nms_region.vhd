@@ -949,6 +949,7 @@ begin
       in_valid  => rec_valid,
       in_ready  => open,
       in_room2  => rec_room,
+      in_spare  => open,
       in_data   => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
                    std_logic_vector(rec_score),
       out_valid => out_valid,

@@ -254,7 +254,7 @@ architecture rtl of fastnms_axi is
   signal p_last  : std_logic; -- a frame's last record (LAST, EMPTY or ABORTED)
   signal q_valid : std_logic;
   signal q_ready : std_logic;
-  signal q_room2 : std_logic;
+  signal q_spare : std_logic;
   signal q_fits  : std_logic;
   signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
   signal drop    : std_logic;
@@ -299,8 +299,10 @@ begin
   assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
     report "fastnms_axi: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
     severity failure;
-  assert CORNER_FIFO_DEPTH >= 2 and CORNER_FIFO_DEPTH < 2 ** 16
-    report "fastnms_axi: CORNER_FIFO_DEPTH must be in 2 .. 65535"
+  -- (At least 8: with fewer RAM words the FIFO never has a spare word, and
+  -- CTRL.LIVE would drop every record but the frames' last ones.)
+  assert CORNER_FIFO_DEPTH >= 8 and CORNER_FIFO_DEPTH < 2 ** 16
+    report "fastnms_axi: CORNER_FIFO_DEPTH must be in 8 .. 65535"
     severity failure;
 
   assert NMS = "3x3" or NMS = "none" or NMS = "region4" or NMS = "region8"
@@ -563,13 +565,14 @@ begin
 
   -- LIVE = 0: every record waits for room. LIVE = 1: the packer is never
   -- stalled; a record that does not fit is dropped. A frame's last record
-  -- needs one free word, any other record two (room for it and the next), so
-  -- the last record of a frame whose records were dropped still finds a word
-  -- unless the FIFO was already full; it carries OVERFLOW for every record
-  -- dropped since the last LAST record stored.
+  -- needs in_ready, any other record in_spare (room for it and for a last
+  -- record whenever it comes), so the last record of a frame whose records
+  -- were dropped still finds a word unless that frame's last record came
+  -- after another frame's had taken the spare word; it carries OVERFLOW for
+  -- every record dropped since the last LAST record stored.
   p_last  <= p_data(PACKED_BITS - 1) or p_data(PACKED_BITS - 2);
   q_fits  <= q_ready when p_last = '1' else
-             q_room2;
+             q_spare;
   p_ready <= '1' when live = '1' else
              q_ready;
   q_valid <= p_valid and (q_fits or not live);
@@ -606,7 +609,8 @@ begin
       rst       => rst,
       in_valid  => q_valid,
       in_ready  => q_ready,
-      in_room2  => q_room2,
+      in_room2  => open,
+      in_spare  => q_spare,
       in_data   => q_data,
       out_valid => f_valid,
       out_ready => f_ready,

@@ -210,11 +210,21 @@ architecture rtl of fastnms_axi_regs is
   signal key_ok        : std_logic;
 
   -- Frame statistics.
-  signal rec_pulse    : std_logic;
-  signal last_pulse   : std_logic;
-  signal done_pulse   : std_logic; -- the clock after last_pulse
-  signal drop_pulse   : std_logic;
-  signal stall_pulse  : std_logic;
+  signal   rec_pulse     : std_logic;
+  signal   last_pulse    : std_logic;
+  signal   done_pulse    : std_logic; -- the clock after last_pulse
+  signal   drop_pulse    : std_logic;
+  signal   stall_pulse   : std_logic;
+  constant COUNT_CORNERS : natural := 0;
+  constant COUNT_FRAMES  : natural := 1;
+  constant COUNT_DROPPED : natural := 2;
+  constant COUNT_STALLS  : natural := 3;
+
+  type counts_t is array (0 to 3) of unsigned(31 downto 0);
+
+  signal counts       : counts_t;
+  signal count_steps  : std_logic_vector(0 to 3);
+  signal count_clears : std_logic_vector(0 to 3);
   signal corners      : unsigned(31 downto 0);
   signal frames       : unsigned(31 downto 0);
   signal corner_count : unsigned(31 downto 0);
@@ -413,60 +423,40 @@ begin
 
   end process statistics;
 
-  -- corners counts the records of the current frame (a record counts on the
-  -- clock after rec_pulse); it restarts when the count is taken, on the clock
-  -- after the frame's last record has been counted.
-  corner_counter : entity work.fastnms_counter
-    generic map (
-      WIDTH   => 32,
-      SEGMENT => 12
-    )
-    port map (
-      clk   => clk,
-      rst   => rst,
-      clear => done_pulse,
-      step  => rec_pulse,
-      value => corners
-    );
+  -- Four 32-bit event counters. COUNT_CORNERS counts the records of the
+  -- current frame (a record counts on the clock after rec_pulse); it restarts
+  -- when the count is taken, on the clock after the frame's last record has
+  -- been counted. The others count from reset and wrap.
+  count_steps  <=
+  (
+    COUNT_CORNERS => rec_pulse,
+    COUNT_FRAMES  => done_pulse,
+    COUNT_DROPPED => drop_pulse,
+    COUNT_STALLS  => stall_pulse
+  );
+  count_clears <= (COUNT_CORNERS => done_pulse, others => '0');
 
-  frame_counter : entity work.fastnms_counter
-    generic map (
-      WIDTH   => 32,
-      SEGMENT => 12
-    )
-    port map (
-      clk   => clk,
-      rst   => rst,
-      clear => '0',
-      step  => done_pulse,
-      value => frames
-    );
+  counters : for i in counts'range generate
 
-  dropped_counter : entity work.fastnms_counter
-    generic map (
-      WIDTH   => 32,
-      SEGMENT => 12
-    )
-    port map (
-      clk   => clk,
-      rst   => rst,
-      clear => '0',
-      step  => drop_pulse,
-      value => dropped
-    );
+    counter : entity work.fastnms_counter
+      generic map (
+        WIDTH   => 32,
+        SEGMENT => 12
+      )
+      port map (
+        clk   => clk,
+        rst   => rst,
+        clear => count_clears(i),
+        step  => count_steps(i),
+        value => counts(i)
+      );
 
-  stall_counter : entity work.fastnms_counter
-    generic map (
-      WIDTH   => 32,
-      SEGMENT => 12
-    )
-    port map (
-      clk   => clk,
-      rst   => rst,
-      clear => '0',
-      step  => stall_pulse,
-      value => stalls
-    );
+  end generate counters;
+
+  corners <= counts(COUNT_CORNERS);
+  frames  <= counts(COUNT_FRAMES);
+  dropped <= counts(COUNT_DROPPED);
+  stalls  <= counts(COUNT_STALLS);
 
   -- ---- read values -----------------------------------------------------------
 

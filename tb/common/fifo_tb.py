@@ -1,5 +1,6 @@
-"""cocotb testbench of fastnms_fifo: data order, capacity, in_ready and
-in_room2 against a count of the words inside, under random valid/ready."""
+"""cocotb testbench of fastnms_fifo: data order, capacity, in_ready,
+in_room2 and in_spare against a count of the words inside, under random
+valid/ready."""
 
 from __future__ import annotations
 
@@ -55,6 +56,8 @@ class TB:
         next_data = 0
         fewest_refused = None
         room2_before = 0
+        promise = False  # the last write had in_spare: in_ready holds until the next
+        spares = 0
         most_inside = 0
         for k in range(clocks):
             valid = self.rng.random() < p_in(k)
@@ -71,10 +74,14 @@ class TB:
                 assert ready, f"clock {k}: in_ready = 0 with {inside} words inside"
             if room2_before:
                 assert ready, f"clock {k}: in_ready = 0 the clock after in_room2 = 1"
+            if promise:
+                assert ready, f"clock {k}: in_ready = 0 after a write with in_spare = 1"
             if not ready:
                 fewest_refused = inside if fewest_refused is None else min(fewest_refused, inside)
             room2_before = value(dut.in_room2)
             if valid and ready:
+                promise = bool(value(dut.in_spare))
+                spares += promise
                 sent += 1
                 next_data += 1
             if value(dut.out_valid) and value(dut.out_ready):
@@ -93,17 +100,24 @@ class TB:
                 received += 1
         assert received == sent, f"{sent} words in, {received} out"
         assert not value(dut.busy)
-        return {"words": sent, "fewest_refused": fewest_refused, "most_inside": most_inside}
+        return {
+            "words": sent,
+            "fewest_refused": fewest_refused,
+            "most_inside": most_inside,
+            "spare_writes": spares,
+        }
 
 
 @cocotb.test()
 async def random_traffic(dut):
     """Random valid/ready at several rates, and phases that fill and drain:
     the words leave in order, in_ready is never low with fewer than
-    WORDS - 2 words inside, in_room2 promises in_ready one clock ahead."""
+    WORDS - 2 words inside, in_room2 promises in_ready one clock ahead,
+    in_spare promises it until the next write."""
     tb = TB(dut)
     await tb.reset()
     fewest = []
+    spares = 0
     cases = [
         (lambda k: 0.5, lambda k: 0.5),
         (lambda k: 0.9, lambda k: 0.3),
@@ -117,10 +131,12 @@ async def random_traffic(dut):
         figures = await tb.run(max(600, 12 * WORDS), p_in, p_out)
         dut._log.info("case %d: %s", i, figures)
         assert figures["words"] > 100, "nothing moved"
+        spares += figures["spare_writes"]
         if figures["fewest_refused"] is not None:
             fewest.append(figures["fewest_refused"])
     dut._log.info("fewest words inside with in_ready = 0: %s", min(fewest))
     assert fewest, "in_ready never dropped: the capacity was not tested"
+    assert (spares > 0) == (WORDS >= 8), f"{spares} writes with in_spare = 1 (WORDS {WORDS})"
 
 
 @cocotb.test()
