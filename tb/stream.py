@@ -16,6 +16,12 @@ from cocotb.triggers import RisingEdge
 from cocotb.utils import get_sim_time
 
 
+def sim_ns() -> int:
+    """The simulation time in whole ns (get_sim_time can carry a few fs of
+    rounding after earlier tests, which would break `// PERIOD_NS`)."""
+    return round(get_sim_time("ns"))
+
+
 def value(signal: SimHandleBase) -> int:
     """The integer value of a std_logic or std_logic_vector signal."""
     v = signal.value
@@ -46,7 +52,7 @@ class StreamSource:
             await RisingEdge(self.clk)
             while not value(self.ready):
                 await RisingEdge(self.clk)
-            self.accept_times.append(get_sim_time("ns"))
+            self.accept_times.append(sim_ns())
             if on_accept is not None:
                 on_accept(i)
         self.valid.value = 0
@@ -82,4 +88,4 @@ class StreamSink:
             await RisingEdge(self.clk)
             if value(self.valid) and value(self.ready):
                 self.beats.append({f: resolve(s.value) for f, s in self.fields.items()})
-                self.times.append(get_sim_time("ns"))
+                self.times.append(sim_ns())

@@ -18,14 +18,22 @@ from tb.stream import StreamSink, StreamSource, value
 PERIOD_NS = 10
 
 
-def frame_beats(img: np.ndarray, data: str = "data") -> list[dict[str, int]]:
-    """The input beats of a well-formed frame, the pixel in field `data`."""
+def frame_beats(
+    img: np.ndarray, data: str = "data", ppc: int = 1, bits: int = 8
+) -> list[dict[str, int]]:
+    """The input beats of a well-formed frame: `ppc` pixels of `bits` bits
+    each per beat in field `data`, pixel 0 in the low bits (as UG934 packs
+    video). A width that is not a multiple of `ppc` ends each row with a
+    short beat padded with zeros (a malformed frame)."""
     h, w = img.shape
-    return [
-        {data: int(img[y, x]), "sof": int(x == 0 and y == 0), "eol": int(x == w - 1)}
-        for y in range(h)
-        for x in range(w)
-    ]
+    beats = []
+    for y in range(h):
+        for x0 in range(0, w, ppc):
+            word = 0
+            for i, v in enumerate(img[y, x0 : x0 + ppc]):
+                word |= int(v) << (bits * i)
+            beats.append({data: word, "sof": int(x0 == 0 and y == 0), "eol": int(x0 + ppc >= w)})
+    return beats
 
 
 def record_mismatch(got: list, want: list, label: str) -> str:
@@ -63,8 +71,9 @@ def split_frames(beats: list[dict[str, int]]) -> list[list[dict[str, int]]]:
 
 
 class VideoTB:
-    """A DUT with clk, rst, cfg_* ports, an `in` pixel stream, an `out`
-    stream with the given fields, and err_line/err_frame pulses."""
+    """A DUT with clk, rst, cfg_* ports, an `in` pixel stream (`ppc` pixels
+    of `bits` bits per beat), an `out` stream with the given fields, and
+    err_line/err_frame pulses."""
 
     def __init__(
         self,
@@ -73,9 +82,13 @@ class VideoTB:
         idle: float = 0.0,
         stall: float = 0.0,
         data: str = "data",
+        ppc: int = 1,
+        bits: int = 8,
     ):
         self.dut = dut
         self.data = data
+        self.ppc = ppc
+        self.bits = bits
         self.rng = random.Random(cocotb.RANDOM_SEED)
         self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
         dut._log.info("seed=%d idle=%.2f stall=%.2f", cocotb.RANDOM_SEED, idle, stall)
@@ -121,7 +134,9 @@ class VideoTB:
                 if k == 0 and nxt is not None:
                     self.set_cfg(**nxt)
 
-            await self.source.send(frame_beats(img, self.data), on_accept=after)
+            await self.source.send(
+                frame_beats(img, self.data, self.ppc, self.bits), on_accept=after
+            )
 
     async def wait_eofs(self, count: int, budget_cycles: int) -> None:
         """Wait until the sink holds `count` end-of-frame beats; fail after

@@ -1,39 +1,45 @@
--- Window generator: turns a raster stream of pixels into a stream of
--- WINDOW x WINDOW neighbourhoods, one output beat per pixel of the frame.
+-- Window generator: turns a raster stream of pixels, PPC pixels per beat
+-- (pixel 0 of a beat in the low bits), into a stream of neighbourhoods, one
+-- output beat per input beat of the frame.
 --
--- Output beat k of a frame is the window centred on pixel k (raster order),
--- with out_sof on pixel (0, 0), out_eol on the last pixel of each row,
--- out_eof on the frame's last pixel and out_x, out_y the pixel's position.
--- out_inside = '1' when the whole window lies in the frame (R <= x <= W-1-R,
--- R <= y <= H-1-R, R = WINDOW/2); out_window is meaningful only then.
--- The output runs R rows and R pixels behind the input (lockstep): the window
--- centred on pixel k leaves READ_LATENCY + 2 clocks after pixel k + R*W + R
--- was accepted. The last
--- R*W + R beats of a frame are border beats that need no pixel: they leave
--- while the next frame's first pixels enter, or on their own when the input is
--- idle, so back-to-back frames of equal width run at one pixel per clock.
+-- Output beat k of a frame holds the WINDOW x WINDOW windows centred on its
+-- PPC pixels as one block of WINDOW rows x (WINDOW - 1 + PPC) columns; out_x,
+-- out_y give the position of the beat's first pixel, out_sof marks beat
+-- (0, 0), out_eol the last beat of each row, out_eof the frame's last beat.
+-- out_inside(i) = '1' when the window of the beat's pixel i lies wholly in
+-- the frame (R <= x <= W-1-R, R <= y <= H-1-R, R = WINDOW/2); that window is
+-- meaningful only then. With B = W / PPC beats per row and LB = ceil(R / PPC),
+-- the output runs R rows and LB beats behind the input (lockstep): beat k
+-- leaves READ_LATENCY + 2 clocks after beat k + R*B + LB was accepted. The
+-- last R*B + LB beats of a frame are border beats that need no pixel: they
+-- leave while the next frame's first beats enter, or on their own when the
+-- input is idle, so back-to-back frames of equal width run at one beat per
+-- clock. (PPC = 1: one pixel per beat, LB = R.)
 --
 -- Geometry comes from cfg_width/cfg_height, sampled when the start-of-frame
--- pixel is accepted (they must be stable for the 2 clocks before). in_sof
+-- beat is accepted (they must be stable for the 2 clocks before). in_sof
 -- starts a frame; in_eol is only checked. Malformed input never stalls the
 -- block:
---   err_line  pulses when in_eol is missing on the last pixel of a line or
+--   err_line  pulses when in_eol is missing on the last beat of a line or
 --             present elsewhere (the frame keeps its configured geometry);
 --   err_frame pulses on a start of frame before the previous frame ended (the
 --             cut frame is completed with border beats if its output had
---             started, else dropped; one extra clock), on each pixel outside
---             any frame (dropped) and on each pixel of a frame whose size is
---             outside WINDOW..MAX_WIDTH x WINDOW..MAX_HEIGHT (dropped).
+--             started, else dropped; one extra clock), on each beat outside
+--             any frame (dropped) and on each beat of a frame whose size is
+--             out of range (dropped): a width below MIN_WIDTH (WINDOW, raised
+--             to whole beats and to at least READ_LATENCY + 1 beats), above
+--             MAX_WIDTH or not a multiple of PPC, a height outside
+--             WINDOW..MAX_HEIGHT.
 --
 -- Handshake: the whole pipeline advances exactly on the clocks with
 -- out_ready = '1' (a beat transfers when out_valid is also high), so
 -- in_ready depends on out_ready through one gate. Put a skid buffer behind
 -- this block if its consumer's ready is not a register.
 --
--- Logic depth: every decision is taken from registers. Pixels enter an input
+-- Logic depth: every decision is taken from registers. Beats enter an input
 -- register first; the counters reset through the flip-flops' synchronous
 -- reset, so their next value is the bare carry chain; the comparisons behind
--- the position flags are made one pixel ahead.
+-- the position flags are made one beat ahead.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -47,7 +53,8 @@ entity fastnms_window is
     MAX_HEIGHT   : positive := 4095;
     WINDOW       : positive := 7;
     DATA_WIDTH   : positive := 8;
-    READ_LATENCY : positive := 1
+    READ_LATENCY : positive := 1;
+    PPC          : positive := 1
   );
   port (
     clk        : in    std_logic;
@@ -56,13 +63,13 @@ entity fastnms_window is
     cfg_height : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     in_valid   : in    std_logic;
     in_ready   : out   std_logic;
-    in_data    : in    std_logic_vector(DATA_WIDTH - 1 downto 0);
+    in_data    : in    std_logic_vector(PPC * DATA_WIDTH - 1 downto 0);
     in_sof     : in    std_logic;
     in_eol     : in    std_logic;
     out_valid  : out   std_logic;
     out_ready  : in    std_logic;
-    out_window : out   std_logic_vector(WINDOW * WINDOW * DATA_WIDTH - 1 downto 0);
-    out_inside : out   std_logic;
+    out_window : out   std_logic_vector(WINDOW * (WINDOW - 1 + PPC) * DATA_WIDTH - 1 downto 0);
+    out_inside : out   std_logic_vector(PPC - 1 downto 0);
     out_sof    : out   std_logic;
     out_eol    : out   std_logic;
     out_eof    : out   std_logic;
@@ -76,23 +83,55 @@ end entity fastnms_window;
 architecture rtl of fastnms_window is
 
   constant R : natural := WINDOW / 2;
+  -- Beats: PPC pixels each, B = W / PPC of them per row. The output runs LB
+  -- beats behind the input; the window register holds 2 LB + 1 beat columns,
+  -- of which the output block uses WINDOW - 1 + PPC pixel columns.
+  constant LB        : positive := (R + PPC - 1) / PPC;
+  constant MAX_BEATS : positive := MAX_WIDTH / PPC;
+  constant PB        : natural  := PPC / 2; -- log2(PPC) for 1, 2, 4
+  constant REG_COLS  : positive := (2 * LB + 1) * PPC;
+  constant OUT_COLS  : positive := WINDOW - 1 + PPC;
+  -- Register column of the output block's column 0.
+  constant COL0 : natural := PPC * LB - R;
+  -- The narrowest frame: WINDOW pixels, whole beats, and more beats than the
+  -- line buffer's read latency (it reads a column back one row after writing
+  -- it, which must be later than the write) and than LB.
+  constant MIN_WIDTH : positive := ((maximum(WINDOW, (READ_LATENCY + 1) * PPC) + PPC - 1) / PPC) * PPC;
   -- Token pipeline: the line buffer's read latency, then the window register.
   constant TOKEN_LAST : positive := READ_LATENCY + 1;
 
-  subtype x_t is unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  -- Beat columns.
+  subtype x_t is unsigned(clog2(MAX_BEATS) - 1 downto 0);
 
   subtype y_t is unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
 
   subtype pixel_t is std_logic_vector(DATA_WIDTH - 1 downto 0);
 
-  type window_t is array (0 to WINDOW - 1, 0 to WINDOW - 1) of pixel_t;
+  subtype beat_t is std_logic_vector(PPC * DATA_WIDTH - 1 downto 0);
+
+  type window_t is array (0 to WINDOW - 1, 0 to REG_COLS - 1) of pixel_t;
+
+  type x_per_lane_t is array (0 to PPC - 1) of x_t;
+
+  -- First beat whose pixel `lane` is at least R columns from the left edge.
+  function first_inside_beat (lane : natural) return natural is
+  begin
+
+    if lane >= R then
+      return 0;
+    end if;
+
+    return (R - lane + PPC - 1) / PPC;
+
+  end function first_inside_beat;
 
   type out_state_t is (idle, lockstep, flush);
 
   -- One output beat in flight beside the window.
   type token_t is record
     valid  : std_logic;
-    inside : std_logic;
+    border : std_logic; -- a beat of the flush, with no beat of its own behind it
+    inside : std_logic_vector(PPC - 1 downto 0);
     sof    : std_logic;
     eol    : std_logic;
     eof    : std_logic;
@@ -104,22 +143,23 @@ architecture rtl of fastnms_window is
 
   -- Frame geometry, as the values the position counters compare against.
   type limits_t is record
-    w_last_m1 : x_t; -- W - 2: the column before the last
-    h_last_m1 : y_t; -- H - 2: the row before the last
-    x_hi      : x_t; -- W - 1 - R: the last inside column
-    y_hi      : y_t; -- H - 1 - R: the last inside row
+    w_last_m1 : x_t;          -- B - 2: the beat before the last
+    w_two     : std_logic;    -- B = 2: a row's first beat is its last but one
+    h_last_m1 : y_t;          -- H - 2: the row before the last
+    x_hi      : x_per_lane_t; -- per pixel of a beat, the last beat it is inside
+    y_hi      : y_t;          -- H - 1 - R: the last inside row
   end record limits_t;
 
   -- Configuration, two register stages: the size, then its range checks
   -- (each separately, to keep the logic shallow) and the limits.
   signal cfg_w      : unsigned(cfg_width'range);
   signal cfg_h      : unsigned(cfg_height'range);
-  signal cfg_ok     : std_logic_vector(3 downto 0);
+  signal cfg_ok     : std_logic_vector(4 downto 0);
   signal cfg_limits : limits_t;
 
   -- Input register; the configuration is sampled with a start of frame.
   signal a_valid  : std_logic;
-  signal a_data   : pixel_t;
+  signal a_data   : beat_t;
   signal a_sof    : std_logic;
   signal a_eol    : std_logic;
   signal a_start  : std_logic; -- a start of frame with a valid size
@@ -131,10 +171,10 @@ architecture rtl of fastnms_window is
   signal in_y      : y_t;
   signal in_x_last : std_logic; -- in_x = W - 1
   signal in_y_last : std_logic; -- in_y = H - 1
-  signal at_start  : std_logic; -- (in_x, in_y) = (R, R): the first window's pixel
-  -- min(in_x, R) and min(in_y, R + 1): small counters that find (R, R)
+  signal at_start  : std_logic; -- (in_x, in_y) = (LB, R): the first window's beat
+  -- min(in_x, LB) and min(in_y, R + 1): small counters that find (LB, R)
   -- without comparing the wide ones.
-  signal near_x    : unsigned(bits_for(R + 1) - 1 downto 0);
+  signal near_x    : unsigned(bits_for(LB + 1) - 1 downto 0);
   signal near_y    : unsigned(bits_for(R + 1) - 1 downto 0);
   signal in_limits : limits_t;
 
@@ -146,8 +186,9 @@ architecture rtl of fastnms_window is
   signal beat_y     : y_t;
   signal out_x_last : std_logic;
   signal out_y_last : std_logic;
-  signal out_x_in   : std_logic; -- R <= beat_x <= W - 1 - R
-  signal out_y_in   : std_logic; -- R <= beat_y <= H - 1 - R
+  signal out_x_in   : std_logic_vector(PPC - 1 downto 0); -- per pixel: R <= x <= W - 1 - R
+  signal out_y_in   : std_logic;                          -- R <= beat_y <= H - 1 - R
+  signal out_cut    : std_logic;                          -- the flush of a cut frame
   signal out_limits : limits_t;
 
   signal advance : std_logic;
@@ -171,7 +212,8 @@ architecture rtl of fastnms_window is
   signal out_y_clear : std_logic;
   signal out_y_step  : std_logic;
   signal col_valid   : std_logic;
-  signal column      : std_logic_vector((WINDOW * DATA_WIDTH) - 1 downto 0);
+  signal shift       : std_logic;
+  signal column      : std_logic_vector((WINDOW * PPC * DATA_WIDTH) - 1 downto 0);
   signal win_regs    : window_t;
   signal tokens      : token_pipe_t;
 
@@ -189,6 +231,13 @@ begin
     severity failure;
   assert MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
     report "fastnms_window: MAX_WIDTH and MAX_HEIGHT must be below 65536"
+    severity failure;
+  assert PPC = 1 or PPC = 2 or PPC = 4
+    report "fastnms_window: PPC must be 1, 2 or 4"
+    severity failure;
+  assert MAX_WIDTH mod PPC = 0 and MAX_WIDTH >= MIN_WIDTH
+    report "fastnms_window: MAX_WIDTH must be a multiple of PPC and at least WINDOW, " &
+           "raised to whole beats and to READ_LATENCY + 1 beats"
     severity failure;
 
   -- The pipeline moves whenever the consumer is ready: out_ready is the
@@ -266,15 +315,21 @@ begin
     if rising_edge(clk) then
       cfg_w     <= cfg_width;
       cfg_h     <= cfg_height;
-      cfg_ok(0) <= at_least(cfg_w, WINDOW);
+      cfg_ok(0) <= at_least(cfg_w, MIN_WIDTH);
       cfg_ok(1) <= not at_least(cfg_w, MAX_WIDTH + 1);
       cfg_ok(2) <= at_least(cfg_h, WINDOW);
       cfg_ok(3) <= not at_least(cfg_h, MAX_HEIGHT + 1);
+      cfg_ok(4) <= to_sl((cfg_w and to_unsigned(PPC - 1, cfg_w'length)) = 0);
 
-      cfg_limits.w_last_m1 <= resize(cfg_w - 2, x_t'length);
+      -- In beats: B = W / PPC (the low bits are checked to be 0).
+      cfg_limits.w_last_m1 <= resize(shift_right(cfg_w, PB) - 2, x_t'length);
+      cfg_limits.w_two     <= to_sl(shift_right(cfg_w, PB) = 2);
       cfg_limits.h_last_m1 <= resize(cfg_h - 2, y_t'length);
-      cfg_limits.x_hi      <= resize(cfg_w - (R + 1), x_t'length);
       cfg_limits.y_hi      <= resize(cfg_h - (R + 1), y_t'length);
+      for lane in 0 to PPC - 1 loop
+        -- The last beat b with PPC b + lane <= W - 1 - R.
+        cfg_limits.x_hi(lane) <= resize(shift_right(cfg_w, PB) - (R + lane + PPC) / PPC, x_t'length);
+      end loop;
     end if;
 
   end process config;
@@ -288,7 +343,7 @@ begin
         a_data  <= in_data;
         a_sof   <= in_sof;
         a_eol   <= in_eol;
-        a_start <= in_sof and to_sl(cfg_ok = "1111");
+        a_start <= in_sof and to_sl(cfg_ok = "11111");
         if in_sof = '1' then
           a_limits <= cfg_limits;
         end if;
@@ -327,7 +382,7 @@ begin
             in_limits <= a_limits;
           end if;
           err_line <= in_x_last xor a_eol;
-          at_start <= to_sl(near_x = R - 1 and near_y = R);
+          at_start <= to_sl(near_x = LB - 1 and near_y = R);
           if in_x_last = '1' then
             in_x_last <= '0';
             near_x    <= (others => '0');
@@ -341,8 +396,10 @@ begin
               near_y    <= (others => '0');
             end if;
           else
-            in_x_last <= to_sl(in_x = in_limits.w_last_m1) and not a_sof;
-            if near_x /= R then
+            -- At a start of frame in_limits are the previous frame's.
+            in_x_last <= (to_sl(in_x = in_limits.w_last_m1) and not a_sof) or
+                         (a_sof and a_limits.w_two);
+            if near_x /= LB then
               near_x <= near_x + 1;
             end if;
           end if;
@@ -369,54 +426,80 @@ begin
     if rising_edge(clk) then
       if advance = '1' then
         tokens(1).valid  <= emit;
+        tokens(1).border <= to_sl(out_state = flush);
         tokens(1).sof    <= to_sl(out_state = idle);
         tokens(1).eol    <= out_x_last;
         tokens(1).eof    <= out_x_last and out_y_last;
         tokens(1).x      <= beat_x;
         tokens(1).y      <= beat_y;
-        tokens(1).inside <= out_x_in and out_y_in and to_sl(out_state = lockstep);
+        -- The first LB beats of a flush end the last inside row: with
+        -- PPC > 1 some of their pixels are inside (not after a cut).
+        for lane in 0 to PPC - 1 loop
+          tokens(1).inside(lane) <= out_x_in(lane) and out_y_in and
+                                    to_sl(out_state = lockstep or (out_state = flush and out_cut = '0'));
+        end loop;
         for stage in 2 to TOKEN_LAST loop
           tokens(stage) <= tokens(stage - 1);
         end loop;
 
         if emit = '1' then
           if out_state = idle then
-            out_state  <= lockstep;
-            out_busy   <= '1';
-            out_limits <= in_limits;
+            out_state <= lockstep;
+            out_busy  <= '1';
           end if;
           if out_x_last = '1' then
             out_x_last <= '0';
-            out_x_in   <= '0';
+            for lane in 0 to PPC - 1 loop
+              out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
+            end loop;
             out_y_last <= to_sl(beat_y = out_limits.h_last_m1);
             out_y_in   <= (out_y_in and not to_sl(beat_y = out_limits.y_hi)) or to_sl(beat_y = R - 1);
             if out_y_last = '1' then
               out_state  <= idle;
               out_busy   <= '0';
+              out_cut    <= '0';
               out_y_last <= '0';
               out_y_in   <= '0';
             end if;
           else
-            -- Leaving idle, out_limits still hold the previous frame's values;
-            -- column 0 never matches them, so the flags stay right.
-            out_x_last <= to_sl(beat_x = out_limits.w_last_m1) and to_sl(out_state /= idle);
-            out_x_in   <= (out_x_in and not to_sl(beat_x = out_limits.x_hi)) or to_sl(beat_x = R - 1);
+            out_x_last <= to_sl(beat_x = out_limits.w_last_m1);
+            for lane in 0 to PPC - 1 loop
+              -- Inside from its first inside beat to x_hi (never, when
+              -- x_hi is the beat before the first).
+              if first_inside_beat(lane) > 0 then
+                out_x_in(lane) <= (out_x_in(lane) or to_sl(beat_x = first_inside_beat(lane) - 1)) and
+                                  not to_sl(beat_x = out_limits.x_hi(lane));
+              else
+                out_x_in(lane) <= out_x_in(lane) and not to_sl(beat_x = out_limits.x_hi(lane));
+              end if;
+            end loop;
           end if;
         end if;
 
-        -- The frame's last pixel, or a cut, ends the lockstep part.
+        -- The frame's last beat, or a cut, ends the lockstep part.
         if out_state = lockstep and
            (restart = '1' or (counted = '1' and in_x_last = '1' and in_y_last = '1')) then
           out_state <= flush;
+          out_cut   <= restart;
         end if;
+      end if;
+
+      -- A frame's flags are taken from its limits from its first beat on:
+      -- they load while no frame is out and as the last border beat leaves
+      -- (when a next frame's first beat can be the very next).
+      if out_state = idle or (advance = '1' and emit = '1' and out_x_last = '1' and out_y_last = '1') then
+        out_limits <= in_limits;
       end if;
 
       if rst = '1' then
         out_state  <= idle;
         out_busy   <= '0';
+        out_cut    <= '0';
         out_x_last <= '0';
         out_y_last <= '0';
-        out_x_in   <= '0';
+        for lane in 0 to PPC - 1 loop
+          out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
+        end loop;
         out_y_in   <= '0';
         for stage in 1 to TOKEN_LAST loop
           tokens(stage).valid <= '0';
@@ -428,9 +511,9 @@ begin
 
   lines : entity work.fastnms_line_buffer
     generic map (
-      MAX_WIDTH    => MAX_WIDTH,
+      MAX_WIDTH    => MAX_BEATS,
       LINES        => WINDOW - 1,
-      DATA_WIDTH   => DATA_WIDTH,
+      DATA_WIDTH   => PPC * DATA_WIDTH,
       READ_LATENCY => READ_LATENCY
     )
     port map (
@@ -444,27 +527,35 @@ begin
       out_column => column
     );
 
-  -- Window: shift left by one column when a column arrives.
+  -- Window: shift left by one beat column when a column arrives, and with
+  -- each border beat of a flush (whose column, if any, is not used), so
+  -- that a beat's window is always the LB beat columns either side of it.
+  shift <= advance and (col_valid or (tokens(TOKEN_LAST - 1).valid and tokens(TOKEN_LAST - 1).border));
+
   window_shift : process (clk) is
   begin
 
     if rising_edge(clk) then
-      if advance = '1' and col_valid = '1' then
+      if shift = '1' then
         for row in 0 to WINDOW - 1 loop
-          for col in 0 to WINDOW - 2 loop
-            win_regs(row, col) <= win_regs(row, col + 1);
+          for col in 0 to REG_COLS - PPC - 1 loop
+            win_regs(row, col) <= win_regs(row, col + PPC);
           end loop;
-          win_regs(row, WINDOW - 1) <= column((row + 1) * DATA_WIDTH - 1 downto row * DATA_WIDTH);
+          for lane in 0 to PPC - 1 loop
+            win_regs(row, REG_COLS - PPC + lane) <=
+              column((row * PPC + lane + 1) * DATA_WIDTH - 1 downto (row * PPC + lane) * DATA_WIDTH);
+          end loop;
         end loop;
       end if;
     end if;
 
   end process window_shift;
 
-  -- Pixel (row r, column c) of the window is slice r * WINDOW + c.
+  -- Pixel (row r, column c) of the output block is slice r * OUT_COLS + c.
 
-  flatten : for index in 0 to WINDOW * WINDOW - 1 generate
-    out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <= win_regs(index / WINDOW, index mod WINDOW);
+  flatten : for index in 0 to WINDOW * OUT_COLS - 1 generate
+    out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <=
+      win_regs(index / OUT_COLS, COL0 + index mod OUT_COLS);
   end generate flatten;
 
   out_valid  <= tokens(TOKEN_LAST).valid;
@@ -472,7 +563,7 @@ begin
   out_sof    <= tokens(TOKEN_LAST).sof;
   out_eol    <= tokens(TOKEN_LAST).eol;
   out_eof    <= tokens(TOKEN_LAST).eof;
-  out_x      <= tokens(TOKEN_LAST).x;
+  out_x      <= shift_left(resize(tokens(TOKEN_LAST).x, out_x'length), PB);
   out_y      <= tokens(TOKEN_LAST).y;
 
 end architecture rtl;

@@ -12,11 +12,10 @@ from pathlib import Path
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
-from cocotb.utils import get_sim_time
 from fastnms.golden.nms import nms_region
 from fastnms.testing.regions import SHAPES, comb, grid, nested_arches, serpentine, square_spiral
 
-from tb.stream import value
+from tb.stream import sim_ns, value
 from tb.video import PERIOD_NS, VideoTB, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
@@ -67,7 +66,7 @@ class TB(VideoTB):
         Returns the clocks from the first pixel accepted to the last end-of-frame beat."""
         start = len(self.sink.beats)
         eofs = sum(b["eof"] for b in self.sink.beats) + len(maps)
-        first = get_sim_time("ns")
+        first = sim_ns()
         self.set_cfg(width=maps[0][0].shape[1])
         await ClockCycles(self.dut.clk, 2)
         for i, (corner, score) in enumerate(maps):
@@ -260,7 +259,7 @@ async def never_stalls(dut):
                     if value(dut.in_ready):
                         seen += 1
                     else:
-                        stalls.append(get_sim_time("ns"))
+                        stalls.append(sim_ns())
 
         start_beats, start_accepts = len(tb.sink.beats), len(tb.source.accept_times)
         watcher = cocotb.start_soon(watch_ready())
