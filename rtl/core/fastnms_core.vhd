@@ -5,14 +5,19 @@
 -- "region4" / "region8": the paper's region NMS with 4- or 8-connectivity, or
 -- "none": every corner).
 --
+-- PPC pixels per clock (1, 2 or 4; pixel 0 of a beat in the low byte of
+-- in_data): the detector and the 3x3 NMS take a beat of PPC pixels every
+-- clock; the region NMS and "none" take one pixel per clock (PPC = 1 only,
+-- asserted).
+--
 -- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
--- taken with the start-of-frame pixel). Output: one record per corner
+-- taken with the start-of-frame beat). Output: one record per corner
 -- (out_x, out_y, out_score, out_eof = '0'; raster order except for the
 -- region NMS, whose records leave as regions close), then one end-of-frame
 -- beat (out_eof = '1'), also for a frame without corners.
 --
 -- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
--- corner) is also presented on the tap_* ports, one beat per pixel with
+-- corner) is also presented on the tap_* ports, one beat per input beat with
 -- start-of-frame and end-of-line; the detector advances only when both the
 -- NMS and the tap accept (a fork: each side's valid waits for the other's
 -- ready, and both readies come from registers).
@@ -31,7 +36,8 @@ entity fastnms_core is
     SCORE        : string   := "opencv";
     NMS          : string   := "3x3";
     READ_LATENCY : positive := 1;
-    SCORE_TAP    : boolean  := false
+    SCORE_TAP    : boolean  := false;
+    PPC          : positive := 1
   );
   port (
     clk           : in    std_logic;
@@ -41,7 +47,7 @@ entity fastnms_core is
     cfg_threshold : in    unsigned(7 downto 0);
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
-    in_data       : in    std_logic_vector(7 downto 0);
+    in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
     in_sof        : in    std_logic;
     in_eol        : in    std_logic;
     out_valid     : out   std_logic;
@@ -52,7 +58,7 @@ entity fastnms_core is
     out_eof       : out   std_logic;
     tap_valid     : out   std_logic;
     tap_ready     : in    std_logic;
-    tap_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
+    tap_score     : out   unsigned(PPC * score_width(SCORE) - 1 downto 0);
     tap_sof       : out   std_logic;
     tap_eol       : out   std_logic;
     err_line      : out   std_logic;
@@ -79,11 +85,11 @@ architecture rtl of fastnms_core is
 
   signal d_valid  : std_logic;
   signal d_ready  : std_logic;
-  signal d_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal d_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal d_sof    : std_logic;
   signal d_eol    : std_logic;
   signal d_eof    : std_logic;
-  signal d_corner : std_logic;
+  signal d_corner : std_logic_vector(PPC - 1 downto 0);
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
   -- The fork between the NMS and the score tap.
@@ -106,13 +112,20 @@ begin
   assert READ_LATENCY <= 2
     report "fastnms_core: READ_LATENCY must be 1 or 2"
     severity failure;
+  assert PPC = 1 or PPC = 2 or PPC = 4
+    report "fastnms_core: PPC must be 1, 2 or 4"
+    severity failure;
+  assert PPC = 1 or NMS = "3x3"
+    report "fastnms_core: NMS """ & NMS & """ takes one pixel per clock: PPC must be 1 (only ""3x3"" takes 2 or 4)"
+    severity failure;
 
   detector : entity work.fastnms_fast_detector
     generic map (
       MAX_WIDTH    => MAX_WIDTH,
       MAX_HEIGHT   => MAX_HEIGHT,
       SCORE        => SCORE,
-      READ_LATENCY => READ_LATENCY
+      READ_LATENCY => READ_LATENCY,
+      PPC          => PPC
     )
     port map (
       clk           => clk,
@@ -157,7 +170,8 @@ begin
         MAX_WIDTH    => MAX_WIDTH,
         MAX_HEIGHT   => MAX_HEIGHT,
         SCORE_BITS   => SCORE_BITS,
-        READ_LATENCY => READ_LATENCY
+        READ_LATENCY => READ_LATENCY,
+        PPC          => PPC
       )
       port map (
         clk        => clk,
@@ -196,8 +210,8 @@ begin
         cfg_width => d_width,
         in_valid  => n_valid,
         in_ready  => n_ready,
-        in_corner => d_corner,
-        in_score  => d_score,
+        in_corner => d_corner(0),
+        in_score  => d_score(SCORE_BITS - 1 downto 0),
         in_sof    => d_sof,
         in_eol    => d_eol,
         in_eof    => d_eof,
@@ -224,8 +238,8 @@ begin
         rst       => rst,
         in_valid  => n_valid,
         in_ready  => n_ready,
-        in_corner => d_corner,
-        in_score  => d_score,
+        in_corner => d_corner(0),
+        in_score  => d_score(SCORE_BITS - 1 downto 0),
         in_eol    => d_eol,
         in_eof    => d_eof,
         out_valid => out_valid,

@@ -1,34 +1,38 @@
--- FAST-9/16 corner detector: a stream of 8-bit pixels in, one result per
--- pixel out, bit-exact with OpenCV's cv::FAST (TYPE_9_16) segment test and,
--- with SCORE = "opencv", its corner score; SCORE = "sad" gives the paper's
--- sum-of-absolute-differences score instead.
+-- FAST-9/16 corner detector: a stream of 8-bit pixels in, PPC per beat
+-- (pixel 0 in the low byte), one result per pixel out, bit-exact with
+-- OpenCV's cv::FAST (TYPE_9_16) segment test and, with SCORE = "opencv", its
+-- corner score; SCORE = "sad" gives the paper's sum-of-absolute-differences
+-- score instead.
 --
--- Output: one beat per input pixel, in raster order, with out_sof on pixel
--- (0, 0), out_eol on the last pixel of each line and out_eof on the frame's
--- last pixel. out_width and out_height give the size of the frame whose
+-- Output: one beat per input beat, in raster order, with out_sof on beat
+-- (0, 0), out_eol on the last beat of each line and out_eof on the frame's
+-- last beat; pixel i of a beat is bit i of out_corner and slice i of
+-- out_score. out_width and out_height give the size of the frame whose
 -- first beat (out_sof) is next to leave: they change at least 10 clocks
 -- before that beat, while the previous frame's last beats may still be
 -- leaving, and hold until the next frame's first beat is on its way. A block
 -- downstream that samples them with out_sof sees a value stable for the 10
--- clocks before. out_corner = '1' and
--- out_score = the score (8 bits for opencv, 12 for sad) at a corner;
--- out_corner = '0' and out_score = 0 on the 3-pixel border and wherever the
+-- clocks before. out_corner(i) = '1' and
+-- score i = the score (8 bits for opencv, 12 for sad) at a corner;
+-- out_corner(i) = '0' and score i = 0 on the 3-pixel border and wherever the
 -- segment test fails.
 --
--- Input: pixels in raster order with in_sof on the first pixel of a frame and
--- in_eol on the last pixel of each line. cfg_width (7..MAX_WIDTH) and
--- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame pixel and
+-- Input: beats in raster order with in_sof on the first beat of a frame and
+-- in_eol on the last beat of each line. cfg_width (7..MAX_WIDTH, a multiple
+-- of PPC; see fastnms_window for the narrowest legal width) and
+-- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame beat and
 -- must be stable for the two clocks before it is accepted; cfg_threshold
 -- (0..255) is sampled when the start-of-frame pixel is accepted. err_line and
 -- err_frame flag malformed input (see fastnms_window); the block never stalls
 -- on it and the next well-formed frame is exact.
 --
--- Pipeline, one pixel per clock, all stages under one advance enable that is
--- the output skid buffer's registered ready:
+-- Pipeline, one beat per clock, all stages under one advance enable that is
+-- the output skid buffer's registered ready; the window generator and the
+-- markers are shared, one lane per pixel of a beat does the rest:
 --   window generator -> circle differences -> segment test (3 stages)
 --                                          -> score (7 stages) -> mask -> skid buffer
--- The result of pixel k leaves LATENCY clocks after pixel k + 3*W + 3 was
--- accepted (see docs/fastnms_fast_detector.md).
+-- The result of beat k leaves LATENCY clocks after beat k + 3*B + ceil(3/PPC)
+-- was accepted, B = W / PPC (see docs/fastnms_fast_detector.md).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -42,7 +46,8 @@ entity fastnms_fast_detector is
     MAX_WIDTH    : positive := 1920;
     MAX_HEIGHT   : positive := 4095;
     SCORE        : string   := "opencv";
-    READ_LATENCY : positive := 1
+    READ_LATENCY : positive := 1;
+    PPC          : positive := 1
   );
   port (
     clk           : in    std_logic;
@@ -52,13 +57,13 @@ entity fastnms_fast_detector is
     cfg_threshold : in    unsigned(7 downto 0);
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
-    in_data       : in    std_logic_vector(7 downto 0);
+    in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
     in_sof        : in    std_logic;
     in_eol        : in    std_logic;
     out_valid     : out   std_logic;
     out_ready     : in    std_logic;
-    out_corner    : out   std_logic;
-    out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
+    out_corner    : out   std_logic_vector(PPC - 1 downto 0);
+    out_score     : out   unsigned(PPC * score_width(SCORE) - 1 downto 0);
     out_sof       : out   std_logic;
     out_eol       : out   std_logic;
     out_eof       : out   std_logic;
@@ -77,11 +82,18 @@ architecture rtl of fastnms_fast_detector is
   -- Stages after the window generator: circle differences, then the score.
   constant STAGES     : positive := CIRCLE_STAGES + SCORE_STAGES;
   constant SCORE_BITS : positive := score_width(SCORE);
+  -- The window generator's block: WINDOW_SIZE rows of BLOCK_COLS pixels.
+  constant BLOCK_COLS : positive := WINDOW_SIZE - 1 + PPC;
+
+  -- One flag per pixel of a beat.
+  subtype lanes_t is std_logic_vector(PPC - 1 downto 0);
+
+  type corners_t is array (CIRCLE_STAGES + SEGMENT_STAGES + 1 to STAGES) of lanes_t;
 
   -- Markers of a beat in flight beside its data.
   type token_t is record
     valid  : std_logic;
-    inside : std_logic;
+    inside : lanes_t;
     sof    : std_logic;
     eol    : std_logic;
     eof    : std_logic;
@@ -92,8 +104,8 @@ architecture rtl of fastnms_fast_detector is
   signal advance  : std_logic;
   signal ready    : std_logic;
   signal w_valid  : std_logic;
-  signal w_window : std_logic_vector(WINDOW_SIZE * WINDOW_SIZE * 8 - 1 downto 0);
-  signal w_inside : std_logic;
+  signal w_window : std_logic_vector(WINDOW_SIZE * BLOCK_COLS * 8 - 1 downto 0);
+  signal w_inside : lanes_t;
   signal w_sof    : std_logic;
   signal w_eol    : std_logic;
   signal w_eof    : std_logic;
@@ -105,17 +117,14 @@ architecture rtl of fastnms_fast_detector is
   signal width_in      : unsigned(cfg_width'range);
   signal height_in     : unsigned(cfg_height'range);
 
-  signal above   : circle_flags_t;
-  signal below   : circle_flags_t;
-  signal diff    : circle_bytes_t;
-  signal corner  : std_logic;
-  signal corners : std_logic_vector(CIRCLE_STAGES + SEGMENT_STAGES + 1 to STAGES);
-  signal scores  : unsigned(SCORE_BITS - 1 downto 0);
+  signal corner  : lanes_t;
+  signal corners : corners_t;
   signal tokens  : tokens_t;
 
-  signal result_corner : std_logic;
-  signal result        : std_logic_vector(SCORE_BITS + 3 downto 0);
-  signal skid_out      : std_logic_vector(SCORE_BITS + 3 downto 0);
+  signal result_corner : lanes_t;
+  signal result_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
+  signal result        : std_logic_vector(PPC * (SCORE_BITS + 1) + 2 downto 0);
+  signal skid_out      : std_logic_vector(PPC * (SCORE_BITS + 1) + 2 downto 0);
 
 begin
 
@@ -136,7 +145,8 @@ begin
       MAX_HEIGHT   => MAX_HEIGHT,
       WINDOW       => WINDOW_SIZE,
       DATA_WIDTH   => 8,
-      READ_LATENCY => READ_LATENCY
+      READ_LATENCY => READ_LATENCY,
+      PPC          => PPC
     )
     port map (
       clk        => clk,
@@ -184,44 +194,34 @@ begin
 
   end process thresholds;
 
-  circle : entity work.fastnms_fast_circle
-    port map (
-      clk    => clk,
-      en     => advance,
-      window => w_window,
-      above  => above,
-      below  => below,
-      diff   => diff
-    );
+  -- One lane per pixel of a beat: its 7x7 window is columns lane ..
+  -- lane + 6 of the block.
+  lanes : for lane in 0 to PPC - 1 generate
 
-  segment : entity work.fastnms_fast_segment
-    port map (
-      clk       => clk,
-      en        => advance,
-      threshold => threshold_cur,
-      above     => above,
-      below     => below,
-      diff      => diff,
-      corner    => corner
-    );
+    signal lane_window : std_logic_vector(WINDOW_SIZE * WINDOW_SIZE * 8 - 1 downto 0);
+    signal above       : circle_flags_t;
+    signal below       : circle_flags_t;
+    signal diff        : circle_bytes_t;
+    signal lane_score  : unsigned(SCORE_BITS - 1 downto 0);
 
-  opencv : if SCORE = OPENCV_SCORE generate
+  begin
 
-    score_block : entity work.fastnms_fast_score_opencv
+    rows : for row in 0 to WINDOW_SIZE - 1 generate
+      lane_window((row + 1) * WINDOW_SIZE * 8 - 1 downto row * WINDOW_SIZE * 8) <=
+        w_window((row * BLOCK_COLS + lane + WINDOW_SIZE) * 8 - 1 downto (row * BLOCK_COLS + lane) * 8);
+    end generate rows;
+
+    circle : entity work.fastnms_fast_circle
       port map (
-        clk   => clk,
-        en    => advance,
-        above => above,
-        below => below,
-        diff  => diff,
-        score => scores
+        clk    => clk,
+        en     => advance,
+        window => lane_window,
+        above  => above,
+        below  => below,
+        diff   => diff
       );
 
-  end generate opencv;
-
-  sad : if SCORE = SAD_SCORE generate
-
-    score_block : entity work.fastnms_fast_score_sad
+    segment : entity work.fastnms_fast_segment
       port map (
         clk       => clk,
         en        => advance,
@@ -229,10 +229,45 @@ begin
         above     => above,
         below     => below,
         diff      => diff,
-        score     => scores
+        corner    => corner(lane)
       );
 
-  end generate sad;
+    opencv : if SCORE = OPENCV_SCORE generate
+
+      score_block : entity work.fastnms_fast_score_opencv
+        port map (
+          clk   => clk,
+          en    => advance,
+          above => above,
+          below => below,
+          diff  => diff,
+          score => lane_score
+        );
+
+    end generate opencv;
+
+    sad : if SCORE = SAD_SCORE generate
+
+      score_block : entity work.fastnms_fast_score_sad
+        port map (
+          clk       => clk,
+          en        => advance,
+          threshold => threshold_cur,
+          above     => above,
+          below     => below,
+          diff      => diff,
+          score     => lane_score
+        );
+
+    end generate sad;
+
+    -- The mask: a pixel outside the border or not a corner scores 0.
+    result_corner(lane) <= corners(STAGES)(lane) and tokens(STAGES).inside(lane);
+    result_score((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS) <=
+      lane_score when result_corner(lane) = '1' else
+      (others => '0');
+
+  end generate lanes;
 
   -- Markers and the corner flag wait for the score.
   delays : process (clk) is
@@ -260,15 +295,12 @@ begin
 
   end process delays;
 
-  result_corner <= corners(STAGES) and tokens(STAGES).inside;
-  result        <= tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
-                   std_logic_vector(scores) when result_corner = '1' else
-                   tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & '0' &
-                   (SCORE_BITS - 1 downto 0 => '0');
+  result <= tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
+            std_logic_vector(result_score);
 
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => SCORE_BITS + 4
+      WIDTH => result'length
     )
     port map (
       clk       => clk,
@@ -281,10 +313,10 @@ begin
       out_data  => skid_out
     );
 
-  out_eof    <= skid_out(SCORE_BITS + 3);
-  out_sof    <= skid_out(SCORE_BITS + 2);
-  out_eol    <= skid_out(SCORE_BITS + 1);
-  out_corner <= skid_out(SCORE_BITS);
-  out_score  <= unsigned(skid_out(SCORE_BITS - 1 downto 0));
+  out_eof    <= skid_out(PPC * (SCORE_BITS + 1) + 2);
+  out_sof    <= skid_out(PPC * (SCORE_BITS + 1) + 1);
+  out_eol    <= skid_out(PPC * (SCORE_BITS + 1));
+  out_corner <= skid_out(PPC * (SCORE_BITS + 1) - 1 downto PPC * SCORE_BITS);
+  out_score  <= unsigned(skid_out(PPC * SCORE_BITS - 1 downto 0));
 
 end architecture rtl;

@@ -5,18 +5,25 @@
 -- `opencv` scores, the survivors are exactly cv2.FAST's keypoints with
 -- nonmaxSuppression=True.
 --
--- Input: one beat per pixel in raster order (in_sof, in_eol), in_score = 0
--- where there is no corner (as the detector outputs). cfg_width and
--- cfg_height are sampled with the start-of-frame pixel and must be stable
--- for the two clocks before (the detector's out_width/out_height are).
+-- Input: beats of PPC pixels in raster order (in_sof, in_eol), score i of a
+-- beat (slice i of in_score) 0 where there is no corner (as the detector
+-- outputs). cfg_width and cfg_height are sampled with the start-of-frame
+-- beat and must be stable for the two clocks before (the detector's
+-- out_width/out_height are).
 --
 -- Output: one record per survivor in raster order (out_x, out_y, out_score,
 -- out_eof = '0'), then one end-of-frame beat (out_eof = '1', out_x/out_y the
 -- frame's last pixel, out_score 0), also for a frame without corners.
 --
--- Pipeline: a 3x3 window of scores (two lines in block RAM), the 8
--- comparisons, their AND, then a skid buffer whose registered ready is the
--- advance enable of everything before it. One pixel per clock.
+-- Pipeline: a 3x3 window of scores per pixel (two lines in block RAM), the 8
+-- comparisons per pixel, their AND, then a skid buffer whose registered
+-- ready is the advance enable of everything before it. One beat per clock.
+-- With PPC > 1 a beat can hold several survivors (two at most with PPC = 4:
+-- survivors are never 8-adjacent); fastnms_nms_serializer hands them out
+-- one per clock from a FIFO of MAX_WIDTH / (2 PPC) + 16 beats, which holds
+-- the worst burst, a row with a survivor on every other pixel (two rows
+-- never bring more than one per beat on average), so the input never waits
+-- for content while the output is ready.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -29,7 +36,8 @@ entity fastnms_nms_3x3 is
     MAX_WIDTH    : positive := 1920;
     MAX_HEIGHT   : positive := 4095;
     SCORE_BITS   : positive := 8;
-    READ_LATENCY : positive := 1
+    READ_LATENCY : positive := 1;
+    PPC          : positive := 1
   );
   port (
     clk        : in    std_logic;
@@ -38,7 +46,7 @@ entity fastnms_nms_3x3 is
     cfg_height : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     in_valid   : in    std_logic;
     in_ready   : out   std_logic;
-    in_score   : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_score   : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
     in_sof     : in    std_logic;
     in_eol     : in    std_logic;
     out_valid  : out   std_logic;
@@ -60,35 +68,47 @@ architecture rtl of fastnms_nms_3x3 is
 
   subtype y_t is unsigned(out_y'range);
 
-  constant MIDDLE : natural := 4; -- slice of (1, 1) in the 3x3 window
+  -- The window generator's block: 3 rows of BLOCK_COLS scores; pixel i of a
+  -- beat is at row 1, column i + 1.
+  constant BLOCK_COLS : positive := 2 + PPC;
+
+  subtype lanes_t is std_logic_vector(PPC - 1 downto 0);
+
+  type above_t is array (0 to PPC - 1) of std_logic_vector(0 to 7);
+
+  function block_slice (row : natural; col : natural) return natural is
+  begin
+
+    return row * BLOCK_COLS + col;
+
+  end function block_slice;
 
   signal advance  : std_logic;
   signal w_valid  : std_logic;
-  signal w_window : std_logic_vector(9 * SCORE_BITS - 1 downto 0);
-  signal w_inside : std_logic;
+  signal w_window : std_logic_vector(3 * BLOCK_COLS * SCORE_BITS - 1 downto 0);
+  signal w_inside : lanes_t;
   signal w_eof    : std_logic;
   signal w_x      : x_t;
   signal w_y      : y_t;
 
-  -- Stage 1: the centre is above each neighbour.
+  -- Stage 1: each centre is above each of its neighbours.
   signal s1_valid  : std_logic;
-  signal s1_inside : std_logic;
+  signal s1_inside : lanes_t;
   signal s1_eof    : std_logic;
-  signal s1_above  : std_logic_vector(0 to 7);
-  signal s1_score  : score_t;
+  signal s1_above  : above_t;
+  signal s1_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal s1_x      : x_t;
   signal s1_y      : y_t;
 
-  -- Stage 2: survivor or end of frame.
+  -- Stage 2: survivors or end of frame.
   signal s2_valid : std_logic;
-  signal s2_keep  : std_logic;
+  signal s2_keep  : lanes_t;
   signal s2_eof   : std_logic;
-  signal s2_score : score_t;
+  signal s2_score : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal s2_x     : x_t;
   signal s2_y     : y_t;
 
-  signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS downto 0);
-  signal record_out : std_logic_vector(record_in'range);
+  signal s2_any   : std_logic;
 
 begin
 
@@ -105,7 +125,8 @@ begin
       MAX_HEIGHT   => MAX_HEIGHT,
       WINDOW       => 3,
       DATA_WIDTH   => SCORE_BITS,
-      READ_LATENCY => READ_LATENCY
+      READ_LATENCY => READ_LATENCY,
+      PPC          => PPC
     )
     port map (
       clk        => clk,
@@ -132,29 +153,39 @@ begin
 
   stages : process (clk) is
 
-    variable centre    : score_t;
-    variable neighbour : natural;
+    variable centre : score_t;
+    variable other  : score_t;
+    variable n      : natural;
 
   begin
 
     if rising_edge(clk) then
       if advance = '1' then
-        centre := unsigned(w_window(MIDDLE * SCORE_BITS + SCORE_BITS - 1 downto MIDDLE * SCORE_BITS));
-        for n in 0 to 7 loop
-          -- Slices 0..8 minus the centre.
-          neighbour   := n + n / MIDDLE;
-          s1_above(n) <= to_sl(centre > unsigned(w_window(neighbour * SCORE_BITS + SCORE_BITS - 1 downto
-                                                          neighbour * SCORE_BITS)));
+        for lane in 0 to PPC - 1 loop
+          centre := unsigned(w_window(block_slice(1, lane + 1) * SCORE_BITS + SCORE_BITS - 1 downto
+                                      block_slice(1, lane + 1) * SCORE_BITS));
+          n      := 0;
+          for row in 0 to 2 loop
+            for col in lane to lane + 2 loop
+              if row /= 1 or col /= lane + 1 then
+                other               := unsigned(w_window(block_slice(row, col) * SCORE_BITS + SCORE_BITS - 1 downto
+                                                         block_slice(row, col) * SCORE_BITS));
+                s1_above(lane)(n)   <= to_sl(centre > other);
+                n                   := n + 1;
+              end if;
+            end loop;
+          end loop;
+          s1_score((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS) <= centre;
+          s2_keep(lane)                                                   <= s1_inside(lane) and
+                                                                             (and s1_above(lane));
         end loop;
         s1_valid  <= w_valid;
         s1_inside <= w_inside;
         s1_eof    <= w_eof;
-        s1_score  <= centre;
         s1_x      <= w_x;
         s1_y      <= w_y;
 
-        s2_valid <= s1_valid and ((s1_inside and (and s1_above)) or s1_eof);
-        s2_keep  <= s1_inside and (and s1_above);
+        s2_valid <= s1_valid;
         s2_eof   <= s1_eof;
         s2_score <= s1_score;
         s2_x     <= s1_x;
@@ -169,28 +200,73 @@ begin
 
   end process stages;
 
-  record_in <= s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
-               std_logic_vector(s2_score) when s2_keep = '1' else
-               s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) & (SCORE_BITS - 1 downto 0 => '0');
+  s2_any <= or s2_keep;
 
-  output_buffer : entity work.fastnms_skid_buffer
-    generic map (
-      WIDTH => record_in'length
-    )
-    port map (
-      clk       => clk,
-      rst       => rst,
-      in_valid  => s2_valid,
-      in_ready  => advance,
-      in_data   => record_in,
-      out_valid => out_valid,
-      out_ready => out_ready,
-      out_data  => record_out
-    );
+  -- One pixel per beat: survivors and the end of frame straight out through
+  -- a skid buffer.
+  single_lane : if PPC = 1 generate
 
-  out_eof   <= record_out(record_out'high);
-  out_x     <= unsigned(record_out(record_out'high - 1 downto y_t'length + SCORE_BITS));
-  out_y     <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
-  out_score <= unsigned(record_out(SCORE_BITS - 1 downto 0));
+    signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS downto 0);
+    signal record_out : std_logic_vector(record_in'range);
+
+  begin
+
+    record_in <= s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
+                 std_logic_vector(s2_score) when s2_keep(0) = '1' else
+                 s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) & (SCORE_BITS - 1 downto 0 => '0');
+
+    output_buffer : entity work.fastnms_skid_buffer
+      generic map (
+        WIDTH => record_in'length
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => s2_valid and (s2_any or s2_eof),
+        in_ready  => advance,
+        in_data   => record_in,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_data  => record_out
+      );
+
+    out_eof   <= record_out(record_out'high);
+    out_x     <= unsigned(record_out(record_out'high - 1 downto y_t'length + SCORE_BITS));
+    out_y     <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
+    out_score <= unsigned(record_out(SCORE_BITS - 1 downto 0));
+
+  end generate single_lane;
+
+  -- Several pixels per beat: the serializer hands the survivors out one
+  -- per clock.
+  several_lanes : if PPC > 1 generate
+
+    serializer : entity work.fastnms_nms_serializer
+      generic map (
+        PPC        => PPC,
+        X_BITS     => x_t'length,
+        Y_BITS     => y_t'length,
+        SCORE_BITS => SCORE_BITS,
+        DEPTH      => MAX_WIDTH / (2 * PPC) + 16
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => s2_valid,
+        in_ready  => advance,
+        in_keep   => s2_keep,
+        in_scores => s2_score,
+        in_x      => s2_x,
+        in_y      => s2_y,
+        in_eof    => s2_eof,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_x     => out_x,
+        out_y     => out_y,
+        out_score => out_score,
+        out_eof   => out_eof
+      );
+
+  end generate several_lanes;
 
 end architecture rtl;

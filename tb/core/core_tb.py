@@ -22,6 +22,15 @@ GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
 SCORE = GENERICS["SCORE"]
 NMS = GENERICS["NMS"]
+LATENCY = GENERICS.get("READ_LATENCY", 1)
+PPC = GENERICS.get("PPC", 1)
+# The narrowest frame: 7 pixels in whole beats, at least READ_LATENCY + 1.
+MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
+
+
+def whole_beats(width: int) -> int:
+    """A width rounded down to whole beats, at least MIN_WIDTH."""
+    return max(MIN_WIDTH, width // PPC * PPC)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 
@@ -35,9 +44,9 @@ def opencv_keypoints(img: np.ndarray, threshold: int) -> list[tuple[int, int, in
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall)
+        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall, ppc=PPC)
         dut._log.info("generics %s", GENERICS)
-        self.set_cfg(width=7, height=7, threshold=0)
+        self.set_cfg(width=MIN_WIDTH, height=7, threshold=0)
 
     async def run_frames(self, frames: list[tuple[np.ndarray, int]], label: str) -> None:
         images = [img for img, _ in frames]
@@ -61,11 +70,13 @@ class TB(VideoTB):
 
 @cocotb.test()
 async def generated_images(dut):
-    """Every pattern at several thresholds, back to back, sizes 7x7 to MAX_WIDTH."""
+    """Every pattern at several thresholds, back to back, sizes from the
+    narrowest (7x7 with one pixel per beat) to MAX_WIDTH."""
     tb = TB(dut)
     await tb.reset()
     rng = tb.np_rng
-    sizes = [(7, 7), (MAX_WIDTH, 12), (9, 8), (int(rng.integers(7, MAX_WIDTH + 1)), 16)]
+    sizes = [(MIN_WIDTH, 7), (MAX_WIDTH, 12), (whole_beats(9), 8)]
+    sizes += [(whole_beats(int(rng.integers(7, MAX_WIDTH + 1))), 16)]
     frames = []
     for i, threshold in enumerate([0, 1, 10, 20, 50, 128, 254, 255, 5, 15, 30, 40]):
         pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]
@@ -81,7 +92,7 @@ async def real_images(dut):
     assert crops, "no crops given in TB_CROPS"
     tb = TB(dut)
     await tb.reset()
-    frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
+    frames = [(testimages.crop(Path(p), whole_beats(w), h), t) for p, w, h, t in crops]
     await tb.run_frames(frames, "photo")
 
 
@@ -94,23 +105,30 @@ async def malformed_then_good(dut):
     tb = TB(dut)
     await tb.reset()
     rng = tb.np_rng
-    w, h = min(MAX_WIDTH, 20), 12
+    w, h = whole_beats(min(MAX_WIDTH, 20)), 12
+    row_beats = w // PPC
     good = [testimages.blurred_noise(rng, w, h) for _ in range(3)]
     cut = testimages.noise(rng, w, h)
     tb.set_cfg(width=w, height=h, threshold=10)
     await ClockCycles(dut.clk, 2)
-    beats = frame_beats(cut)
-    await tb.source.send(beats[: 6 * w])  # cut after its first results
-    await tb.source.send(frame_beats(good[0]))
-    await tb.source.send(beats[:w])  # cut before any result
+
+    def beats_of(img):
+        return frame_beats(img, ppc=PPC)
+
+    beats = beats_of(cut)
+    await tb.source.send(beats[: 6 * row_beats])  # cut after its first results
+    await tb.source.send(beats_of(good[0]))
+    await tb.source.send(beats[:row_beats])  # cut before any result
     await tb.source.send([{"data": 7, "sof": 0, "eol": 0}] * 4)  # outside any frame
-    await tb.source.send(frame_beats(good[1]))
-    tb.set_cfg(width=5, height=h, threshold=10)  # bad size: dropped
-    await ClockCycles(dut.clk, 2)
-    await tb.source.send(frame_beats(good[2][:, :5]))
+    await tb.source.send(beats_of(good[1]))
+    # Bad sizes, dropped: too narrow; with PPC > 1 not whole beats.
+    for bad in [5] + ([w + 1] if PPC > 1 else []):
+        tb.set_cfg(width=bad, height=h, threshold=10)
+        await ClockCycles(dut.clk, 2)
+        await tb.source.send(beats_of(np.resize(good[2], (h, bad))))
     tb.set_cfg(width=w, height=h, threshold=10)
     await ClockCycles(dut.clk, 2)
-    await tb.source.send(frame_beats(good[2]))
+    await tb.source.send(beats_of(good[2]))
     await tb.wait_eofs(4, 100 * w * h)
     records = split_records(tb.sink.beats)
     for img, got in zip(good, records[1:], strict=True):

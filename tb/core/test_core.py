@@ -56,3 +56,24 @@ def test_core_photos(request, score, nms, crops):
             "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:crops]),
         },
     )
+
+
+@pytest.mark.parametrize("ppc", [2, 4])
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_core_ppc(request, score, ppc):
+    """Detector + 3x3 NMS with 2 and 4 pixels per beat: generated images,
+    malformed frames (widths that are not whole beats among them), and
+    photograph crops, against the golden model and cv2.FAST."""
+    generics = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240, "READ_LATENCY": 2 if ppc == 2 else 1}
+    run_cocotb(
+        "fastnms_core",
+        "core_tb",
+        {**generics, "SCORE": score, "NMS": "3x3", "PPC": ppc},
+        testcase="generated_images,malformed_then_good,real_images",
+        name=request.node.nodeid,
+        env={
+            "TB_IDLE": "0.1",
+            "TB_STALL": "0.2",
+            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:2]),
+        },
+    )

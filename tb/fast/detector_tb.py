@@ -20,27 +20,37 @@ MAX_WIDTH = GENERICS["MAX_WIDTH"]
 MAX_HEIGHT = GENERICS.get("MAX_HEIGHT", 4095)
 SCORE = GENERICS["SCORE"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
+PPC = GENERICS.get("PPC", 1)
+SCORE_BITS = 12 if SCORE == "sad" else 8
+# The narrowest legal width (fastnms_window): 7 pixels in whole beats, at
+# least READ_LATENCY + 1 beats.
+MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 THRESHOLDS = [0, 1, 10, 20, 50, 128, 254, 255]
-# Clocks from the acceptance of pixel k + 3*W + 3 to the transfer of result k.
+# Clocks from the acceptance of beat k + 3*B + ceil(3/PPC) to the transfer of
+# result k (B = W / PPC beats per row).
 RESULT_LATENCY = LATENCY + (13 if SCORE == "sad" else 12)
 
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
         super().__init__(
-            dut, ["corner", "score", "sof", "eol", "eof", "width", "height"], idle, stall
+            dut,
+            ["corner", "score", "sof", "eol", "eof", "width", "height"],
+            idle,
+            stall,
+            ppc=PPC,
         )
         dut._log.info("generics %s", GENERICS)
-        self.set_cfg(width=7, height=7, threshold=0)
+        self.set_cfg(width=MIN_WIDTH, height=7, threshold=0)
 
     async def run_frames(self, frames: list[tuple[np.ndarray, int]], label: str) -> None:
         """Send (image, threshold) frames back to back and check every result."""
         images = [img for img, _ in frames]
         cfgs = [{"width": i.shape[1], "height": i.shape[0], "threshold": t} for i, t in frames]
         await self.send_frames(images, cfgs)
-        total = sum(img.size for img in images)
+        total = sum(img.size for img in images) // PPC
         await self.wait_beats(total, int(total * 6 / max(0.05, 1 - max(IDLE, STALL))) + 2000)
         out = split_frames(self.sink.beats)
         assert len(out) == len(frames), f"{len(out)} frames out of {len(frames)}"
@@ -50,22 +60,30 @@ class TB(VideoTB):
 
 
 def check_frame(img: np.ndarray, threshold: int, beats: list[dict], label: str) -> None:
-    """Markers, corner mask and score map of one frame, exactly."""
+    """Markers, corner mask and score map of one frame, exactly (pixel i of a
+    beat is bit i of corner and slice i of score)."""
     h, w = img.shape
-    assert len(beats) == w * h, f"{label}: {len(beats)} beats"
-    sof = np.array([b["sof"] for b in beats]).reshape(h, w)
-    eol = np.array([b["eol"] for b in beats]).reshape(h, w)
-    got_corner = np.array([b["corner"] for b in beats], dtype=bool).reshape(h, w)
-    got_score = np.array([b["score"] for b in beats], dtype=np.int64).reshape(h, w)
+    row_beats = w // PPC
+    assert len(beats) == row_beats * h, f"{label}: {len(beats)} beats"
+    sof = np.array([b["sof"] for b in beats]).reshape(h, row_beats)
+    eol = np.array([b["eol"] for b in beats]).reshape(h, row_beats)
+    mask = (1 << SCORE_BITS) - 1
+    got_corner = np.array(
+        [(b["corner"] >> i) & 1 for b in beats for i in range(PPC)], dtype=bool
+    ).reshape(h, w)
+    got_score = np.array(
+        [(b["score"] >> (SCORE_BITS * i)) & mask for b in beats for i in range(PPC)],
+        dtype=np.int64,
+    ).reshape(h, w)
     want_corner, want_score = fast_maps(img.astype(np.uint8), threshold, SCORE)
-    want_sof = np.zeros((h, w), dtype=int)
+    want_sof = np.zeros((h, row_beats), dtype=int)
     want_sof[0, 0] = 1
-    want_eol = np.zeros((h, w), dtype=int)
+    want_eol = np.zeros((h, row_beats), dtype=int)
     want_eol[:, -1] = 1
     assert np.array_equal(sof, want_sof), f"{label}: sof markers"
     assert np.array_equal(eol, want_eol), f"{label}: eol markers"
     eof = [b["eof"] for b in beats]
-    assert eof == [0] * (w * h - 1) + [1], f"{label}: eof markers"
+    assert eof == [0] * (len(beats) - 1) + [1], f"{label}: eof markers"
     size = (beats[0]["width"], beats[0]["height"])
     assert size == (w, h), f"{label}: out_width/out_height {size} with out_sof"
     bad = np.argwhere((got_corner != want_corner) | (got_score != want_score))
@@ -79,10 +97,16 @@ def check_frame(img: np.ndarray, threshold: int, beats: list[dict], label: str) 
 
 
 def generated_frames(tb: TB) -> list[tuple[np.ndarray, int]]:
-    """Every pattern at every threshold, in sizes from 7x7 to MAX_WIDTH wide."""
+    """Every pattern at every threshold, in sizes from the narrowest to
+    MAX_WIDTH wide (whole beats)."""
     rng = tb.np_rng
-    sizes = [(7, 7), (8, 8), (MAX_WIDTH, 9), (9, 7), (7, 12), (MAX_WIDTH - 1 | 1, 8)]
-    sizes += [(int(rng.integers(7, MAX_WIDTH + 1)), int(rng.integers(7, 16))) for _ in range(4)]
+
+    def beats(width: int) -> int:
+        return max(MIN_WIDTH, width // PPC * PPC)
+
+    sizes = [(MIN_WIDTH, 7), (beats(8), 8), (MAX_WIDTH, 9), (beats(9), 7), (MIN_WIDTH, 12)]
+    sizes += [(beats(MAX_WIDTH - 1 | 1), 8)]
+    sizes += [(beats(int(rng.integers(7, MAX_WIDTH + 1))), int(rng.integers(7, 16))) for _ in range(4)]
     frames = []
     for i, threshold in enumerate(THRESHOLDS * 2):
         pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]
@@ -115,15 +139,17 @@ async def real_images(dut):
 
 @cocotb.test()
 async def throughput(dut):
-    """No gaps, no stalls: the last of N frames of W x H leaves
-    N*W*H + 3*W + 3 + RESULT_LATENCY - 1 clocks after the first pixel."""
+    """No gaps, no stalls: the last of N frames of W x H (B = W / PPC beats
+    per row) leaves N*B*H + 3*B + ceil(3/PPC) + RESULT_LATENCY - 1 clocks
+    after the first beat."""
     tb = TB(dut, idle=0.0, stall=0.0)
     await tb.reset()
-    width, height, count = min(MAX_WIDTH, 40), 12, 3
+    width, height, count = min(MAX_WIDTH, 40) // PPC * PPC, 12, 3
     frames = [(testimages.blurred_noise(tb.np_rng, width, height), 10) for _ in range(count)]
     await tb.run_frames(frames, "throughput")
     cycles = (tb.sink.times[-1] - tb.source.accept_times[0]) // PERIOD_NS
-    expected = count * width * height + 3 * width + 3 + RESULT_LATENCY - 1
+    row_beats = width // PPC
+    expected = count * row_beats * height + 3 * row_beats + -(-3 // PPC) + RESULT_LATENCY - 1
     dut._log.info(
         "%d frames of %dx%d: %d cycles, expected %d", count, width, height, cycles, expected
     )

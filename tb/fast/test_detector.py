@@ -24,6 +24,37 @@ def test_detector_generated(request, score, idle, stall):
     )
 
 
+@pytest.mark.parametrize("ppc", [2, 4])
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_detector_ppc(request, score, ppc):
+    """Beats of 2 and 4 pixels: generated images with idles and back-pressure,
+    and the clock count of back-to-back frames."""
+    generics = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 2 if ppc == 4 else 1}
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {**generics, "SCORE": score, "PPC": ppc},
+        testcase="generated_images,throughput",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.2", "TB_STALL": "0.2"},
+    )
+
+
+@pytest.mark.parametrize("ppc", [2, 4])
+def test_detector_ppc_photos(request, ppc):
+    """Photograph crops with 2 and 4 pixels per beat."""
+    cases = testimages.photo_crops([10, 20, 50])[:3]
+    cases = [[p, w // ppc * ppc, h, t] for p, w, h, t in cases]
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {**PHOTO, "SCORE": "opencv", "PPC": ppc},
+        testcase="real_images",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.1", "TB_CROPS": json.dumps(cases)},
+    )
+
+
 @pytest.mark.parametrize("crops", [3, pytest.param(6, marks=pytest.mark.slow)])
 @pytest.mark.parametrize("score", ["opencv", "sad"])
 def test_detector_photos(request, score, crops):

@@ -8,23 +8,37 @@ import os
 
 import cocotb
 import numpy as np
-from cocotb.triggers import ClockCycles
+from cocotb.triggers import ClockCycles, RisingEdge
 from fastnms.golden.nms import nms_3x3
 
+from tb.stream import value
 from tb.video import VideoTB, record_mismatch, split_records
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
 SCORE_BITS = GENERICS["SCORE_BITS"]
+LATENCY = GENERICS.get("READ_LATENCY", 1)
+PPC = GENERICS.get("PPC", 1)
+# The core's narrowest frame (7), in whole beats of at least READ_LATENCY + 1.
+MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall, data="score")
+        super().__init__(
+            dut, ["x", "y", "score", "eof"], idle, stall, data="score", ppc=PPC, bits=SCORE_BITS
+        )
         dut._log.info("generics %s", GENERICS)
-        self.set_cfg(width=7, height=7)
+        self.set_cfg(width=MIN_WIDTH, height=7)
+        self.input_waits = 0  # clocks with in_valid high and in_ready low
+
+    async def count_input_waits(self) -> None:
+        while True:
+            await RisingEdge(self.dut.clk)
+            if value(self.dut.in_valid) and not value(self.dut.in_ready):
+                self.input_waits += 1
 
     def score_map(self, width: int, height: int) -> np.ndarray:
         """A random map: sparse to dense, few distinct values (many ties) or
@@ -55,8 +69,13 @@ async def random_maps(dut):
     tb = TB(dut)
     await tb.reset()
     rng = tb.np_rng
-    sizes = [(7, 7), (MAX_WIDTH, 8), (9, 12), (8, 7)]
-    sizes += [(int(rng.integers(7, MAX_WIDTH + 1)), int(rng.integers(7, 20))) for _ in range(6)]
+    def beats(width: int) -> int:
+        return max(MIN_WIDTH, width // PPC * PPC)
+
+    sizes = [(MIN_WIDTH, 7), (MAX_WIDTH, 8), (beats(9), 12), (beats(8), 7)]
+    sizes += [
+        (beats(int(rng.integers(7, MAX_WIDTH + 1))), int(rng.integers(7, 20))) for _ in range(6)
+    ]
     await tb.run_maps([tb.score_map(w, h) for w, h in sizes])
 
 
@@ -70,7 +89,7 @@ async def plateaus(dut):
     flat[1:-1, 1:-1] = 5
     peak = flat.copy()
     peak[4, 6] = 6
-    empty = np.zeros((7, 7), dtype=np.int64)
+    empty = np.zeros((7, MIN_WIDTH), dtype=np.int64)
     await tb.run_maps([flat, peak, empty])
     assert split_records(tb.sink.beats)[1] == [(6, 4, 6)]
 
@@ -82,3 +101,23 @@ async def idle_after_frame(dut):
     await tb.reset()
     await tb.run_maps([tb.score_map(MAX_WIDTH, 9)])
     await ClockCycles(dut.clk, 10)
+
+
+@cocotb.test()
+async def densest_survivors(dut):
+    """The most survivors a map can have (every other pixel of every other
+    row, MAX_WIDTH wide; with PPC = 4 two per beat on those rows), three
+    frames back to back with the output always ready: the input never waits,
+    and the records are exact."""
+    tb = TB(dut, idle=0.0, stall=0.0)
+    await tb.reset()
+    cocotb.start_soon(tb.count_input_waits())
+    height = 12
+    dense = np.ones((height, MAX_WIDTH), dtype=np.int64)
+    dense[1::2, 1::2] = 2
+    dense[0, :] = dense[-1, :] = dense[:, 0] = dense[:, -1] = 0
+    survivors = len(nms_3x3(dense > 0, dense))
+    dut._log.info("%d survivors in a %dx%d map", survivors, MAX_WIDTH, height)
+    assert survivors >= (MAX_WIDTH // 2 - 1) * (height // 2 - 1)
+    await tb.run_maps([dense, dense, dense])
+    assert tb.input_waits == 0, f"the input waited {tb.input_waits} clocks"

@@ -21,6 +21,27 @@ def test_nms_3x3(request, score_bits, idle, stall):
     )
 
 
+@pytest.mark.parametrize(
+    "generics",
+    [
+        {"MAX_WIDTH": 24, "SCORE_BITS": 8, "PPC": 2, "READ_LATENCY": 2},
+        {"MAX_WIDTH": 64, "SCORE_BITS": 12, "PPC": 4, "READ_LATENCY": 1},
+    ],
+    ids=["ppc2", "ppc4"],
+)
+@pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
+def test_nms_3x3_ppc(request, generics, idle, stall):
+    """Beats of 2 and 4 scores: random maps, plateaus, and the densest map
+    through the serializer without an input wait."""
+    run_cocotb(
+        "fastnms_nms_3x3",
+        "nms3x3_tb",
+        {**generics, "MAX_HEIGHT": 64},
+        name=request.node.nodeid,
+        env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
+
+
 @pytest.mark.parametrize("connectivity", [4, 8])
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.5)], ids=str)
 def test_nms_region(request, connectivity, idle, stall):
