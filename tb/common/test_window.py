@@ -36,14 +36,38 @@ def test_window_generics(request, generics):
 # Several pixels per beat: 7x7 (detector) and 3x3 (NMS) windows, narrow and
 # odd-sized maxima, both read latencies.
 PPC_SETS = {
-    "ppc2_w7": {"MAX_WIDTH": 24, "MAX_HEIGHT": 20, "WINDOW": 7, "DATA_WIDTH": 8,
-                "READ_LATENCY": 1, "PPC": 2},
-    "ppc4_w7": {"MAX_WIDTH": 28, "MAX_HEIGHT": 20, "WINDOW": 7, "DATA_WIDTH": 8,
-                "READ_LATENCY": 2, "PPC": 4},
-    "ppc2_w3": {"MAX_WIDTH": 16, "MAX_HEIGHT": 16, "WINDOW": 3, "DATA_WIDTH": 9,
-                "READ_LATENCY": 2, "PPC": 2},
-    "ppc4_w3": {"MAX_WIDTH": 16, "MAX_HEIGHT": 16, "WINDOW": 3, "DATA_WIDTH": 9,
-                "READ_LATENCY": 1, "PPC": 4},
+    "ppc2_w7": {
+        "MAX_WIDTH": 24,
+        "MAX_HEIGHT": 20,
+        "WINDOW": 7,
+        "DATA_WIDTH": 8,
+        "READ_LATENCY": 1,
+        "PPC": 2,
+    },
+    "ppc4_w7": {
+        "MAX_WIDTH": 28,
+        "MAX_HEIGHT": 20,
+        "WINDOW": 7,
+        "DATA_WIDTH": 8,
+        "READ_LATENCY": 2,
+        "PPC": 4,
+    },
+    "ppc2_w3": {
+        "MAX_WIDTH": 16,
+        "MAX_HEIGHT": 16,
+        "WINDOW": 3,
+        "DATA_WIDTH": 9,
+        "READ_LATENCY": 2,
+        "PPC": 2,
+    },
+    "ppc4_w3": {
+        "MAX_WIDTH": 16,
+        "MAX_HEIGHT": 16,
+        "WINDOW": 3,
+        "DATA_WIDTH": 9,
+        "READ_LATENCY": 1,
+        "PPC": 4,
+    },
 }
 
 

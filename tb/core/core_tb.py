@@ -31,6 +31,8 @@ MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
 def whole_beats(width: int) -> int:
     """A width rounded down to whole beats, at least MIN_WIDTH."""
     return max(MIN_WIDTH, width // PPC * PPC)
+
+
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 

@@ -106,7 +106,9 @@ def generated_frames(tb: TB) -> list[tuple[np.ndarray, int]]:
 
     sizes = [(MIN_WIDTH, 7), (beats(8), 8), (MAX_WIDTH, 9), (beats(9), 7), (MIN_WIDTH, 12)]
     sizes += [(beats(MAX_WIDTH - 1 | 1), 8)]
-    sizes += [(beats(int(rng.integers(7, MAX_WIDTH + 1))), int(rng.integers(7, 16))) for _ in range(4)]
+    sizes += [
+        (beats(int(rng.integers(7, MAX_WIDTH + 1))), int(rng.integers(7, 16))) for _ in range(4)
+    ]
     frames = []
     for i, threshold in enumerate(THRESHOLDS * 2):
         pattern = testimages.PATTERNS[i % len(testimages.PATTERNS)]

@@ -69,6 +69,7 @@ async def random_maps(dut):
     tb = TB(dut)
     await tb.reset()
     rng = tb.np_rng
+
     def beats(width: int) -> int:
         return max(MIN_WIDTH, width // PPC * PPC)
 
