@@ -321,14 +321,15 @@ begin
       cfg_ok(3) <= not at_least(cfg_h, MAX_HEIGHT + 1);
       cfg_ok(4) <= to_sl((cfg_w and to_unsigned(PPC - 1, cfg_w'length)) = 0);
 
-      -- In beats: B = W / PPC (the low bits are checked to be 0).
-      cfg_limits.w_last_m1 <= resize(shift_right(cfg_w, PB) - 2, x_t'length);
-      cfg_limits.w_two     <= to_sl(shift_right(cfg_w, PB) = 2);
+      -- In beats: B = W / PPC (the low bits are checked to be 0); the
+      -- subtraction comes first, so the shift is wiring after the carry chain.
+      cfg_limits.w_last_m1 <= resize(shift_right(cfg_w - 2 * PPC, PB), x_t'length);
+      cfg_limits.w_two     <= to_sl(cfg_w = 2 * PPC);
       cfg_limits.h_last_m1 <= resize(cfg_h - 2, y_t'length);
       cfg_limits.y_hi      <= resize(cfg_h - (R + 1), y_t'length);
       for lane in 0 to PPC - 1 loop
         -- The last beat b with PPC b + lane <= W - 1 - R.
-        cfg_limits.x_hi(lane) <= resize(shift_right(cfg_w, PB) - (R + lane + PPC) / PPC, x_t'length);
+        cfg_limits.x_hi(lane) <= resize(shift_right(cfg_w - PPC * ((R + lane + PPC) / PPC), PB), x_t'length);
       end loop;
     end if;
 

@@ -57,16 +57,19 @@ architecture rtl of fastnms_nms_serializer is
   constant BEAT_BITS : positive := 1 + Y_BITS + X_BITS + PPC + PPC * SCORE_BITS;
   constant REC_BITS  : positive := 1 + X_BITS + Y_BITS + SCORE_BITS;
 
-  subtype lanes_t is std_logic_vector(PPC - 1 downto 0);
 
-  -- The lowest set flag of a non-zero set, as a lane number.
-  function lowest (keep : lanes_t) return natural is
+  -- A beat's records still to hand out: its survivors (bits 0 .. PPC - 1)
+  -- and its end of frame (bit PPC), lowest first.
+  subtype items_t is std_logic_vector(PPC downto 0);
+
+  -- The lowest set item of a non-zero set.
+  function lowest (items : items_t) return natural is
   begin
 
-    for lane in 0 to PPC - 1 loop
+    for item in 0 to PPC loop
 
-      if keep(lane) = '1' then
-        return lane;
+      if items(item) = '1' then
+        return item;
       end if;
 
     end loop;
@@ -75,18 +78,53 @@ architecture rtl of fastnms_nms_serializer is
 
   end function lowest;
 
+  -- The set without its lowest item (gates, no carry chain).
+  function without_lowest (items : items_t) return items_t is
+    variable rest  : items_t   := items;
+    variable found : std_logic := '0';
+  begin
+
+    for item in 0 to PPC loop
+
+      rest(item) := items(item) and found;
+      found      := found or items(item);
+
+    end loop;
+
+    return rest;
+
+  end function without_lowest;
+
+  -- Exactly one item set.
+  function single (items : items_t) return std_logic is
+    variable ones : natural := 0;
+  begin
+
+    for item in 0 to PPC loop
+
+      if items(item) = '1' then
+        ones := ones + 1;
+      end if;
+
+    end loop;
+
+    return to_sl(ones = 1);
+
+  end function single;
+
   signal q_valid : std_logic;
   signal q_ready : std_logic;
   signal q_data  : std_logic_vector(BEAT_BITS - 1 downto 0);
 
-  -- The beat being handed out: the lanes left, and its end of frame.
+  -- The beat being handed out: its records left, and whether that is one.
   signal cur_valid  : std_logic;
-  signal cur_keep   : lanes_t;
+  signal cur_items  : items_t;
+  signal cur_last   : std_logic;
   signal cur_scores : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal cur_x      : unsigned(X_BITS - 1 downto 0);
   signal cur_y      : unsigned(Y_BITS - 1 downto 0);
-  signal cur_eof    : std_logic;
-  signal rest       : lanes_t; -- cur_keep without its lowest lane
+  signal q_items    : items_t;
+  signal rest       : items_t;
   signal emit       : std_logic;
   signal done       : std_logic;
 
@@ -126,15 +164,17 @@ begin
     );
 
   -- A record leaves the stage on every clock the skid buffer has room; the
-  -- beat is done with its last survivor, or with its end of frame.
-  rest    <= cur_keep and std_logic_vector(unsigned(cur_keep) - 1);
+  -- beat is done with its last record (a registered flag: the FIFO's read
+  -- depends on registers through one gate).
   emit    <= cur_valid and rec_ready;
-  done    <= emit and (to_sl(unsigned(cur_keep) = 0) or (to_sl(unsigned(rest) = 0) and not cur_eof));
+  done    <= emit and cur_last;
   q_ready <= not cur_valid or done;
+  q_items <= q_data(BEAT_BITS - 1) & q_data(PPC + PPC * SCORE_BITS - 1 downto PPC * SCORE_BITS);
+  rest    <= without_lowest(cur_items);
 
   hand_out : process (clk) is
 
-    variable lane : natural range 0 to PPC - 1;
+    variable item : natural range 0 to PPC;
 
   begin
 
@@ -145,29 +185,29 @@ begin
 
       if emit = '1' then
         rec_valid <= '1';
-        if unsigned(cur_keep) /= 0 then
-          lane     := lowest(cur_keep);
+        item      := lowest(cur_items);
+        if item < PPC then
           rec_data <= '0' & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
-                      std_logic_vector(to_unsigned(lane, LANE_BITS)) & std_logic_vector(cur_y) &
-                      std_logic_vector(cur_scores((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS));
-          cur_keep <= rest;
+                      std_logic_vector(to_unsigned(item, LANE_BITS)) & std_logic_vector(cur_y) &
+                      std_logic_vector(cur_scores((item + 1) * SCORE_BITS - 1 downto item * SCORE_BITS));
         else
           rec_data <= '1' & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
                       (LANE_BITS - 1 downto 0 => '1') & std_logic_vector(cur_y) &
                       (SCORE_BITS - 1 downto 0 => '0');
-          cur_eof  <= '0';
         end if;
-        if done = '1' then
+        cur_items <= rest;
+        cur_last  <= single(rest);
+        if cur_last = '1' then
           cur_valid <= '0';
         end if;
       end if;
 
       if q_valid = '1' and q_ready = '1' then
         cur_valid  <= '1';
-        cur_eof    <= q_data(BEAT_BITS - 1);
+        cur_items  <= q_items;
+        cur_last   <= single(q_items);
         cur_y      <= unsigned(q_data(BEAT_BITS - 2 downto BEAT_BITS - 1 - Y_BITS));
         cur_x      <= unsigned(q_data(X_BITS + PPC + PPC * SCORE_BITS - 1 downto PPC + PPC * SCORE_BITS));
-        cur_keep   <= q_data(PPC + PPC * SCORE_BITS - 1 downto PPC * SCORE_BITS);
         cur_scores <= unsigned(q_data(PPC * SCORE_BITS - 1 downto 0));
       end if;
 
