@@ -65,12 +65,14 @@ def corners(frame: AxiStreamFrame) -> list[Record]:
     return [] if flags == [0b011] else records
 
 
-def video_lines(img: np.ndarray) -> list[AxiStreamFrame]:
+def video_lines(img: np.ndarray, ppc: int = 1) -> list[AxiStreamFrame]:
     """A well-formed frame as AXI4-Stream packets, one per line (tlast at its end),
-    tuser on the first pixel."""
+    tuser on the first beat. With `ppc` pixels per beat (the source's byte
+    lanes) the tuser list has one entry per byte: cocotbext-axi drives a beat's
+    tuser from its last byte, so every byte of the first beat carries it."""
     h, w = img.shape
     return [
-        AxiStreamFrame(bytes(img[y].tobytes()), tuser=[int(y == 0)] + [0] * (w - 1))
+        AxiStreamFrame(bytes(img[y].tobytes()), tuser=[int(y == 0 and i < ppc) for i in range(w)])
         for y in range(h)
     ]
 
@@ -96,6 +98,7 @@ class AxiTop:
         self.dut = dut
         self.generics = generics
         self.score_video = bool(generics.get("SCORE_VIDEO", False))
+        self.ppc = int(generics.get("PPC", 1))
         self.rng = random.Random(cocotb.RANDOM_SEED)
         self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
         dut._log.info(
@@ -236,7 +239,7 @@ class AxiTop:
         img, t = frames[0]
         await self.configure(img.shape[1], img.shape[0], t)
         for i, (img, _) in enumerate(frames):
-            first = await self.send_lines(video_lines(img))
+            first = await self.send_lines(video_lines(img, self.ppc))
             if i + 1 < len(frames):
                 await first.wait()
                 nxt, t_next = frames[i + 1]

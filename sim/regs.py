@@ -34,7 +34,7 @@ class Register(NamedTuple):
 
 ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 2, 0)
+MAP_VERSION = (0, 3, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,7 +44,7 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 2)
+VERSION_MINOR = Field(8, 8, "ro", 3)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
 # CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
@@ -82,6 +82,7 @@ MODE_SCORE = Field(0, 4, "rw", "SCORE")
 MODE_SCORE_VALUES = {"opencv": 0, "sad": 1}
 MODE_NMS = Field(4, 4, "rw", "NMS")
 MODE_NMS_VALUES = {"none": 0, "3x3": 1, "region4": 2, "region8": 3}
+MODE_PPC = Field(8, 4, "ro", "PPC")
 
 # CORNER_COUNT: Corner records of the last completed frame (0 for a frame without corners).
 CORNER_COUNT = 0x20
@@ -160,7 +161,7 @@ REGISTERS: dict[str, Register] = {
     "THRESHOLD": Register(THRESHOLD, {"VALUE": THRESHOLD_VALUE}),
     "WIDTH": Register(WIDTH, {"VALUE": WIDTH_VALUE}),
     "HEIGHT": Register(HEIGHT, {"VALUE": HEIGHT_VALUE}),
-    "MODE": Register(MODE, {"SCORE": MODE_SCORE, "NMS": MODE_NMS}),
+    "MODE": Register(MODE, {"SCORE": MODE_SCORE, "NMS": MODE_NMS, "PPC": MODE_PPC}),
     "CORNER_COUNT": Register(CORNER_COUNT, {"VALUE": CORNER_COUNT_VALUE}),
     "FRAME_COUNT": Register(FRAME_COUNT, {"VALUE": FRAME_COUNT_VALUE}),
     "MAX_SIZE": Register(MAX_SIZE, {"WIDTH": MAX_SIZE_WIDTH, "HEIGHT": MAX_SIZE_HEIGHT}),

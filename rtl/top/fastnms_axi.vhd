@@ -11,6 +11,9 @@
 -- Vivado's IP packager; the interface attributes sit in the entity's
 -- declarative part, where the LRM (and GHDL) want port attributes.
 --
+-- PPC pixels per clock (1, 2 or 4) on s_axis_video and m_axis_score, packed
+-- as UG934 does (pixel 0 of a beat in the low byte); PPC > 1 needs NMS "3x3".
+--
 -- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
 -- registered twice more before it resets the control state, but every VALID
 -- and READY of the top is low from the first clock edge at which aresetn is
@@ -32,13 +35,14 @@ entity fastnms_axi is
     SCORE             : string   := "opencv";
     NMS               : string   := "3x3";
     SCORE_VIDEO       : boolean  := false;
-    CORNER_FIFO_DEPTH : positive := 512
+    CORNER_FIFO_DEPTH : positive := 512;
+    PPC               : positive := 1
   );
   port (
     aclk    : in    std_logic;
     aresetn : in    std_logic;
     -- video in (AXI4-Stream video, UG934: tuser = start of frame, tlast = end of line)
-    s_axis_video_tdata  : in    std_logic_vector(7 downto 0);
+    s_axis_video_tdata  : in    std_logic_vector(PPC * 8 - 1 downto 0);
     s_axis_video_tuser  : in    std_logic;
     s_axis_video_tlast  : in    std_logic;
     s_axis_video_tvalid : in    std_logic;
@@ -50,7 +54,7 @@ entity fastnms_axi is
     m_axis_corners_tvalid : out   std_logic;
     m_axis_corners_tready : in    std_logic;
     -- per-pixel score video (SCORE_VIDEO only)
-    m_axis_score_tdata  : out   std_logic_vector(7 downto 0);
+    m_axis_score_tdata  : out   std_logic_vector(PPC * 8 - 1 downto 0);
     m_axis_score_tuser  : out   std_logic;
     m_axis_score_tlast  : out   std_logic;
     m_axis_score_tvalid : out   std_logic;
@@ -106,7 +110,7 @@ entity fastnms_axi is
   attribute x_interface_info of s_axis_video_tready : signal is
     "xilinx.com:interface:axis:1.0 s_axis_video TREADY";
   attribute x_interface_parameter of s_axis_video_tdata : signal is
-    "XIL_INTERFACENAME s_axis_video, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
+    "XIL_INTERFACENAME s_axis_video, TDATA_NUM_BYTES " & integer'image(PPC) & ", TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
     "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
   attribute x_interface_info of m_axis_corners_tdata : signal is
@@ -134,7 +138,7 @@ entity fastnms_axi is
   attribute x_interface_info of m_axis_score_tready : signal is
     "xilinx.com:interface:axis:1.0 m_axis_score TREADY";
   attribute x_interface_parameter of m_axis_score_tdata : signal is
-    "XIL_INTERFACENAME m_axis_score, TDATA_NUM_BYTES 1, TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
+    "XIL_INTERFACENAME m_axis_score, TDATA_NUM_BYTES " & integer'image(PPC) & ", TUSER_WIDTH 1, HAS_TLAST 1, HAS_TREADY 1, " &
     "HAS_TKEEP 0, HAS_TSTRB 0, TDEST_WIDTH 0, TID_WIDTH 0";
 
   attribute x_interface_info of s_axi_ctrl_awaddr : signal is
@@ -225,8 +229,8 @@ architecture rtl of fastnms_axi is
   signal cfg_threshold : unsigned(7 downto 0);
 
   -- Video in: the input skid buffer, then the gate.
-  signal v_in       : std_logic_vector(9 downto 0);
-  signal v_out      : std_logic_vector(9 downto 0);
+  signal v_in       : std_logic_vector(PPC * 8 + 1 downto 0);
+  signal v_out      : std_logic_vector(PPC * 8 + 1 downto 0);
   signal v_valid    : std_logic;
   signal v_in_ready : std_logic;
   signal v_tready   : std_logic;
@@ -234,7 +238,7 @@ architecture rtl of fastnms_axi is
   signal v_ready    : std_logic;
   signal c_valid    : std_logic; -- into the core
   signal c_ready    : std_logic;
-  signal c_data     : std_logic_vector(7 downto 0);
+  signal c_data     : std_logic_vector(PPC * 8 - 1 downto 0);
   signal c_sof      : std_logic;
   signal c_eol      : std_logic;
 
@@ -274,7 +278,7 @@ architecture rtl of fastnms_axi is
   -- Score tap.
   signal t_valid : std_logic;
   signal t_ready : std_logic;
-  signal t_score : unsigned(SCORE_BITS - 1 downto 0);
+  signal t_score : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal t_sof   : std_logic;
   signal t_eol   : std_logic;
 
@@ -307,6 +311,12 @@ begin
 
   assert NMS = "3x3" or NMS = "none" or NMS = "region4" or NMS = "region8"
     report "fastnms_axi: NMS must be ""3x3"", ""region4"", ""region8"" or ""none"""
+    severity failure;
+  assert (PPC = 1 or PPC = 2 or PPC = 4) and MAX_WIDTH mod PPC = 0
+    report "fastnms_axi: PPC must be 1, 2 or 4, and MAX_WIDTH a multiple of it"
+    severity failure;
+  assert PPC = 1 or NMS = "3x3"
+    report "fastnms_axi: only NMS ""3x3"" takes 2 or 4 pixels per clock (PPC); the others need PPC 1"
     severity failure;
 
   -- ---- reset ---------------------------------------------------------------
@@ -401,7 +411,8 @@ begin
       SCORE             => SCORE,
       NMS               => NMS,
       SCORE_VIDEO       => SCORE_VIDEO,
-      CORNER_FIFO_DEPTH => CORNER_FIFO_DEPTH
+      CORNER_FIFO_DEPTH => CORNER_FIFO_DEPTH,
+      PPC               => PPC
     )
     port map (
       clk             => aclk,
@@ -449,7 +460,7 @@ begin
 
   input_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => 10
+      WIDTH => PPC * 8 + 2
     )
     port map (
       clk       => aclk,
@@ -463,6 +474,9 @@ begin
     );
 
   gate : entity work.fastnms_video_gate
+    generic map (
+      DATA_WIDTH => PPC * 8
+    )
     port map (
       clk         => aclk,
       rst         => rst,
@@ -472,9 +486,9 @@ begin
       cfg_apply   => cfg_apply,
       in_valid    => v_valid,
       in_ready    => v_ready,
-      in_data     => v_out(7 downto 0),
-      in_sof      => v_out(9),
-      in_eol      => v_out(8),
+      in_data     => v_out(PPC * 8 - 1 downto 0),
+      in_sof      => v_out(PPC * 8 + 1),
+      in_eol      => v_out(PPC * 8),
       out_valid   => c_valid,
       out_ready   => c_ready,
       out_data    => c_data,
@@ -485,7 +499,8 @@ begin
   check : entity work.fastnms_video_check
     generic map (
       MAX_WIDTH  => MAX_WIDTH,
-      MAX_HEIGHT => MAX_HEIGHT
+      MAX_HEIGHT => MAX_HEIGHT,
+      PPC        => PPC
     )
     port map (
       clk             => aclk,
@@ -511,7 +526,8 @@ begin
       SCORE        => SCORE,
       NMS          => NMS,
       READ_LATENCY => 1,
-      SCORE_TAP    => SCORE_VIDEO
+      SCORE_TAP    => SCORE_VIDEO,
+      PPC          => PPC
     )
     port map (
       clk           => aclk,
@@ -665,21 +681,27 @@ begin
   -- ---- score video -------------------------------------------------------------------
 
   score_stream : if SCORE_VIDEO generate
-    signal t_in        : std_logic_vector(9 downto 0);
-    signal t_out       : std_logic_vector(9 downto 0);
-    signal t_sat       : std_logic_vector(7 downto 0);
+    signal t_in        : std_logic_vector(PPC * 8 + 1 downto 0);
+    signal t_out       : std_logic_vector(PPC * 8 + 1 downto 0);
+    signal t_sat       : std_logic_vector(PPC * 8 - 1 downto 0);
     signal t_out_valid : std_logic;
     signal t_out_ready : std_logic;
   begin
 
-    -- The score as 8 bits, saturated (the sad score has 12).
-    t_sat <= (others => '1') when resize(t_score, 8) /= t_score else
-             std_logic_vector(resize(t_score, 8));
-    t_in  <= t_sof & t_eol & t_sat;
+    -- Each pixel's score as 8 bits, saturated (the sad score has 12).
+    saturate : for lane in 0 to PPC - 1 generate
+      constant LSB : natural := lane * SCORE_BITS;
+    begin
+      t_sat(lane * 8 + 7 downto lane * 8) <=
+        (others => '1') when resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8) /=
+                             t_score(LSB + SCORE_BITS - 1 downto LSB) else
+        std_logic_vector(resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8));
+    end generate saturate;
+    t_in <= t_sof & t_eol & t_sat;
 
     score_buffer : entity work.fastnms_skid_buffer
       generic map (
-        WIDTH => 10
+        WIDTH => PPC * 8 + 2
       )
       port map (
         clk       => aclk,
@@ -694,9 +716,9 @@ begin
 
     t_out_ready         <= m_axis_score_tready and ports_on;
     m_axis_score_tvalid <= t_out_valid and ports_on;
-    m_axis_score_tuser  <= t_out(9);
-    m_axis_score_tlast  <= t_out(8);
-    m_axis_score_tdata  <= t_out(7 downto 0);
+    m_axis_score_tuser  <= t_out(PPC * 8 + 1);
+    m_axis_score_tlast  <= t_out(PPC * 8);
+    m_axis_score_tdata  <= t_out(PPC * 8 - 1 downto 0);
 
   end generate score_stream;
 

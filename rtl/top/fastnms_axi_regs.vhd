@@ -12,7 +12,10 @@
 -- Configuration: THRESHOLD, WIDTH and HEIGHT are written into shadow
 -- registers and set cfg_pending; the core's values (cfg_*) take them when
 -- cfg_apply pulses (the video gate does that at a start of frame, while the
--- input waits). WIDTH and HEIGHT writes are clamped to 7 .. MAX_*.
+-- input waits). WIDTH and HEIGHT writes are clamped to MIN_WIDTH .. MAX_WIDTH
+-- and 7 .. MAX_HEIGHT, WIDTH then rounded down to a multiple of PPC (MIN_WIDTH:
+-- 7 with one pixel per clock, 8 with 2 or 4, the narrowest frame of
+-- fastnms_window).
 --
 -- Commands (CMD) act only with KEY = 0x5A in the same write.
 --
@@ -38,7 +41,8 @@ entity fastnms_axi_regs is
     SCORE             : string   := "opencv";
     NMS               : string   := "3x3";
     SCORE_VIDEO       : boolean  := false;
-    CORNER_FIFO_DEPTH : positive := 512
+    CORNER_FIFO_DEPTH : positive := 512;
+    PPC               : positive := 1
   );
   port (
     clk : in    std_logic;
@@ -159,7 +163,11 @@ architecture rtl of fastnms_axi_regs is
                                     place(VERSION_MINOR_RESET, VERSION_MINOR_LSB) or
                                     place(VERSION_PATCH_RESET, VERSION_PATCH_LSB);
   constant MODE_WORD    : word_t := field(score_code(SCORE), MODE_SCORE_LSB, MODE_SCORE_WIDTH) or
-                                    field(nms_code(NMS), MODE_NMS_LSB, MODE_NMS_WIDTH);
+                                    field(nms_code(NMS), MODE_NMS_LSB, MODE_NMS_WIDTH) or
+                                    field(PPC, MODE_PPC_LSB, MODE_PPC_WIDTH);
+  -- The narrowest frame (fastnms_window with READ_LATENCY 1): 7 pixels in
+  -- whole beats of PPC, at least two beats.
+  constant MIN_WIDTH    : positive := ((maximum(7, 2 * PPC) + PPC - 1) / PPC) * PPC;
   constant MAX_WORD     : word_t := field(MAX_WIDTH, MAX_SIZE_WIDTH_LSB, MAX_SIZE_WIDTH_WIDTH) or
                                     field(MAX_HEIGHT, MAX_SIZE_HEIGHT_LSB, MAX_SIZE_HEIGHT_WIDTH);
   constant BUILD_WORD   : word_t := field(CORNER_FIFO_DEPTH, BUILD_FIFO_DEPTH_LSB, BUILD_FIFO_DEPTH_WIDTH) or
@@ -177,12 +185,12 @@ architecture rtl of fastnms_axi_regs is
   signal w_height : word_t;
   -- Clamping flags of the merged WIDTH and HEIGHT, in two steps.
   signal wd_high    : std_logic;
-  signal wd_low_7   : std_logic;
+  signal wd_low_min   : std_logic;
   signal wd_above   : std_logic;
   signal ht_high    : std_logic;
   signal ht_low_7   : std_logic;
   signal ht_above   : std_logic;
-  signal wd_below_7 : std_logic;
+  signal wd_below_min : std_logic;
   signal wd_over    : std_logic;
   signal ht_below_7 : std_logic;
   signal ht_over    : std_logic;
@@ -271,14 +279,14 @@ begin
 
       w_flags1 <= w_merged;
       wd_high  <= or w_width(REG_DATA_WIDTH - 1 downto 16);
-      wd_low_7 <= not at_least(unsigned(w_width(15 downto 0)), 7);
+      wd_low_min <= not at_least(unsigned(w_width(15 downto 0)), MIN_WIDTH);
       wd_above <= at_least(unsigned(w_width(15 downto 0)), MAX_WIDTH + 1);
       ht_high  <= or w_height(REG_DATA_WIDTH - 1 downto 16);
       ht_low_7 <= not at_least(unsigned(w_height(15 downto 0)), 7);
       ht_above <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
 
       do_write   <= w_flags1;
-      wd_below_7 <= wd_low_7 and not wd_high;
+      wd_below_min <= wd_low_min and not wd_high;
       wd_over    <= wd_above or wd_high;
       ht_below_7 <= ht_low_7 and not ht_high;
       ht_over    <= ht_above or ht_high;
@@ -334,12 +342,13 @@ begin
           thr_shadow <= unsigned(w_data(THRESHOLD_VALUE_WIDTH - 1 downto THRESHOLD_VALUE_LSB));
         end if;
         if w_sel(REG_WIDTH) = '1' then
-          if wd_below_7 = '1' then
-            width_shadow <= to_unsigned(7, width_t'length);
+          if wd_below_min = '1' then
+            width_shadow <= to_unsigned(MIN_WIDTH, width_t'length);
           elsif wd_over = '1' then
             width_shadow <= to_unsigned(MAX_WIDTH, width_t'length);
           else
-            width_shadow <= unsigned(w_width(width_t'range));
+            -- Whole beats: the low bits cleared.
+            width_shadow <= unsigned(w_width(width_t'range)) and not to_unsigned(PPC - 1, width_t'length);
           end if;
         end if;
         if w_sel(REG_HEIGHT) = '1' then

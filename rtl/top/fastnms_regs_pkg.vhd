@@ -42,7 +42,7 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"02";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"03";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";
@@ -96,6 +96,8 @@ package fastnms_regs_pkg is
   constant MODE_NMS_3X3      : natural  := 1;
   constant MODE_NMS_REGION4  : natural  := 2;
   constant MODE_NMS_REGION8  : natural  := 3;
+  constant MODE_PPC_LSB      : natural  := 8;
+  constant MODE_PPC_WIDTH    : positive := 4;
 
   -- CORNER_COUNT: Corner records of the last completed frame (0 for a frame without corners).
   constant CORNER_COUNT_VALUE_LSB   : natural                       := 0;

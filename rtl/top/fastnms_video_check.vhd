@@ -1,7 +1,9 @@
--- Input checker: watches the pixels that enter fastnms_core and classifies
--- malformed video (AXI4-Stream video, AMD UG934: tuser on the first pixel of
--- a frame, tlast on the last pixel of each line) against the frame size in
--- use. It only observes; the core recovers by itself (fastnms_window).
+-- Input checker: watches the beats (PPC pixels each) that enter fastnms_core
+-- and classifies malformed video (AXI4-Stream video, AMD UG934: tuser on the
+-- first beat of a frame, tlast on the last beat of each line) against the
+-- frame size in use, a line being WIDTH / PPC beats (WIDTH is a multiple of
+-- PPC: the register file rounds it). It only observes; the core recovers by
+-- itself (fastnms_window). Below, a "pixel" is a beat.
 --
 -- Lines are delimited by tlast and frames by tuser and the line count, so
 -- one bad line is reported once and does not shift the following ones:
@@ -26,7 +28,8 @@ library work;
 entity fastnms_video_check is
   generic (
     MAX_WIDTH  : positive := 1920;
-    MAX_HEIGHT : positive := 1080
+    MAX_HEIGHT : positive := 1080;
+    PPC        : positive := 1
   );
   port (
     clk             : in    std_logic;
@@ -80,6 +83,9 @@ begin
   assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
     report "fastnms_video_check: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
     severity failure;
+  assert PPC = 1 or PPC = 2 or PPC = 4
+    report "fastnms_video_check: PPC must be 1, 2 or 4"
+    severity failure;
 
   framed <= p_valid and (p_sof or active);
 
@@ -90,7 +96,8 @@ begin
       p_valid  <= pixel;
       p_sof    <= pixel_sof;
       p_eol    <= pixel_eol;
-      cfg_w_m2 <= cfg_width - 2;
+      -- Beats per line minus 2 (the subtraction first: the shift is wiring).
+      cfg_w_m2 <= shift_right(cfg_width - 2 * PPC, PPC / 2);
       cfg_h_m2 <= cfg_height - 2;
 
       err_eol_early   <= '0';
@@ -117,7 +124,9 @@ begin
         else
           err_eol_late <= x_last and not p_sof;
           late         <= (late or x_last) and not p_sof;
-          x_last       <= to_sl(x = w_m2) and not x_last and not p_sof;
+          -- (With two beats per line the beat after a start of frame ends it.)
+          x_last       <= (to_sl(x = w_m2) and not x_last and not p_sof) or
+                          (p_sof and to_sl(cfg_w_m2 = 0));
           if p_sof = '1' then
             y_last <= '0';
           end if;

@@ -27,7 +27,8 @@ library work;
 
 entity fastnms_video_gate is
   generic (
-    SETTLE : positive := 3
+    SETTLE     : positive := 3;
+    DATA_WIDTH : positive := 8
   );
   port (
     clk         : in    std_logic;
@@ -38,12 +39,12 @@ entity fastnms_video_gate is
     cfg_apply   : out   std_logic;
     in_valid    : in    std_logic;
     in_ready    : out   std_logic;
-    in_data     : in    std_logic_vector(7 downto 0);
+    in_data     : in    std_logic_vector(DATA_WIDTH - 1 downto 0);
     in_sof      : in    std_logic;
     in_eol      : in    std_logic;
     out_valid   : out   std_logic;
     out_ready   : in    std_logic;
-    out_data    : out   std_logic_vector(7 downto 0);
+    out_data    : out   std_logic_vector(DATA_WIDTH - 1 downto 0);
     out_sof     : out   std_logic;
     out_eol     : out   std_logic
   );
@@ -58,7 +59,7 @@ architecture rtl of fastnms_video_gate is
   signal drop       : std_logic; -- the pixel is consumed and dropped
   signal skid_ready : std_logic;
   signal skid_rst   : std_logic;
-  signal skid_out   : std_logic_vector(9 downto 0);
+  signal skid_out   : std_logic_vector(DATA_WIDTH + 1 downto 0);
 
 begin
 
@@ -109,7 +110,7 @@ begin
 
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => 10
+      WIDTH => DATA_WIDTH + 2
     )
     port map (
       clk       => clk,
@@ -122,8 +123,8 @@ begin
       out_data  => skid_out
     );
 
-  out_sof  <= skid_out(9);
-  out_eol  <= skid_out(8);
-  out_data <= skid_out(7 downto 0);
+  out_sof  <= skid_out(DATA_WIDTH + 1);
+  out_eol  <= skid_out(DATA_WIDTH);
+  out_data <= skid_out(DATA_WIDTH - 1 downto 0);
 
 end architecture rtl;

@@ -36,6 +36,9 @@ SCORE = GENERICS["SCORE"]
 NMS = GENERICS["NMS"]
 SCORE_VIDEO = bool(GENERICS.get("SCORE_VIDEO", False))
 FIFO_DEPTH = GENERICS.get("CORNER_FIFO_DEPTH", 512)
+PPC = GENERICS.get("PPC", 1)
+# The narrowest frame the WIDTH register takes (fastnms_axi_regs).
+MIN_WIDTH = 7 if PPC == 1 else 8
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 
@@ -45,7 +48,20 @@ TIMEOUT_MS = 20 + 2e-3 * MAX_WIDTH * MAX_HEIGHT
 
 def all_generics() -> dict[str, object]:
     """The top's generics, defaults filled in."""
-    return {"SCORE_VIDEO": False, "CORNER_FIFO_DEPTH": 512, **GENERICS}
+    return {"SCORE_VIDEO": False, "CORNER_FIFO_DEPTH": 512, "PPC": 1, **GENERICS}
+
+
+def whole_beats(width: int) -> int:
+    """A frame width in whole beats of PPC pixels, at least MIN_WIDTH."""
+    return max(MIN_WIDTH, width // PPC * PPC)
+
+
+def width_register(written: int) -> int:
+    """What WIDTH reads after a write: clamped to MIN_WIDTH .. MAX_WIDTH (bits
+    31:16 count), then rounded down to whole beats."""
+    if written > MAX_WIDTH:
+        return MAX_WIDTH
+    return max(MIN_WIDTH, written) // PPC * PPC
 
 
 def opencv_keypoints(img: np.ndarray, threshold: int) -> list[Record]:
@@ -144,18 +160,14 @@ async def registers(dut):
 
     await tb.write(regs.THRESHOLD, 0xFFFFFF37)
     assert await tb.read(regs.THRESHOLD) == 0x37
-    for written, want in [
-        (0, 7),
-        (6, 7),
-        (7, 7),
-        (MAX_WIDTH, MAX_WIDTH),
-        (MAX_WIDTH - 1, MAX_WIDTH - 1),
-        (MAX_WIDTH + 1, MAX_WIDTH),
-        (0x10000 | 9, MAX_WIDTH),
-        (0xFFFFFFFF, MAX_WIDTH),
-    ]:
+    for written in [0, 6, 7, 8, 9, 10, 11, MAX_WIDTH, MAX_WIDTH - 1, MAX_WIDTH + 1]:
         await tb.write(regs.WIDTH, written)
-        assert await tb.read(regs.WIDTH) == want, f"WIDTH write {written}"
+        want = width_register(written)
+        assert await tb.read(regs.WIDTH) == want, f"WIDTH write {written}: want {want}"
+    for written in [0x10000 | 9, 0xFFFFFFFF]:
+        await tb.write(regs.WIDTH, written)
+        assert await tb.read(regs.WIDTH) == MAX_WIDTH, f"WIDTH write 0x{written:x}"
+    assert regs.MODE_PPC.get(await tb.read(regs.MODE)) == PPC
     await tb.write(regs.HEIGHT, MAX_HEIGHT + 5)
     assert await tb.read(regs.HEIGHT) == MAX_HEIGHT
     await tb.write(regs.HEIGHT, 3)
@@ -198,7 +210,7 @@ async def registers(dut):
     await tb.axil.write(regs.WIDTH + 1, b"\x00")  # WSTRB 0010: the high byte of 40
     assert await tb.read(regs.WIDTH) == 40
     await tb.axil.write(regs.WIDTH, b"\x21")  # WSTRB 0001
-    assert await tb.read(regs.WIDTH) == 0x21
+    assert await tb.read(regs.WIDTH) == width_register(0x21)
     await tb.axil.write(regs.WIDTH + 2, b"\x01")  # bits 31:16 set: clamped
     assert await tb.read(regs.WIDTH) == MAX_WIDTH
     await tb.axil.write(regs.CTRL + 1, b"\xff")  # no CTRL bit in byte 1
@@ -237,12 +249,12 @@ async def generated_frames(dut):
     await tb.reset()
     rng = tb.np_rng
     sizes = [
-        (7, 7),
+        (MIN_WIDTH, 7),
         (MAX_WIDTH, MAX_HEIGHT),
-        (9, 8),
-        (int(rng.integers(7, MAX_WIDTH + 1)), int(rng.integers(7, 24))),
+        (whole_beats(9), 8),
+        (whole_beats(int(rng.integers(7, MAX_WIDTH + 1))), int(rng.integers(7, 24))),
         (MAX_WIDTH, 7),
-        (8, int(rng.integers(7, MAX_HEIGHT + 1))),
+        (whole_beats(8), int(rng.integers(7, MAX_HEIGHT + 1))),
     ]
     frames = []
     for i, threshold in enumerate([0, 1, 10, 20, 50, 128, 254, 255, 5, 15, 30, 40]):
@@ -266,7 +278,7 @@ async def real_images(dut):
     assert crops, "no crops given in TB_CROPS"
     tb = await TB.create(dut)
     await tb.reset()
-    frames = [(testimages.crop(Path(p), w, h), t) for p, w, h, t in crops]
+    frames = [(testimages.crop(Path(p), whole_beats(w), h), t) for p, w, h, t in crops]
     await tb.check_frames(frames, "photo")
     assert await tb.input_errors() == set()
     assert tb.score_without_video == 0, "m_axis_score_tvalid rose without SCORE_VIDEO"
@@ -294,18 +306,22 @@ async def malformed_then_good(dut):
     the well-formed frame after it is exact."""
     tb = await TB.create(dut)
     await tb.reset()
-    w, h, t = min(MAX_WIDTH, 20), min(MAX_HEIGHT, 12), 10
+    w, h, t = whole_beats(min(MAX_WIDTH, 20)), min(MAX_HEIGHT, 12), 10
     await tb.configure(w, h, t)
-    lines = video_lines
+    n = PPC  # bytes per beat: the cases below cut and add whole beats
+    mid = min(5, w // n - 2)  # a beat inside a line
+
+    def lines(img):
+        return video_lines(img, PPC)
 
     def short_line(img):
         out = lines(img)
-        out[4] = AxiStreamFrame(out[4].tdata[:-3], tuser=[0] * (w - 3))
+        out[4] = AxiStreamFrame(out[4].tdata[: -3 * n], tuser=[0] * (w - 3 * n))
         return out
 
     def long_line(img):
         out = lines(img)
-        out[5] = AxiStreamFrame(out[5].tdata + b"\x10\x20", tuser=[0] * (w + 2))
+        out[5] = AxiStreamFrame(out[5].tdata + b"\x10\x20" * n, tuser=[0] * (w + 2 * n))
         return out
 
     def no_tlast(img):  # lines 2 and 3 as one packet: no tlast at the end of line 2
@@ -321,7 +337,8 @@ async def malformed_then_good(dut):
 
     def tuser_mid_frame(img):
         out = lines(img)
-        out[4] = AxiStreamFrame(out[4].tdata, tuser=[0] * 5 + [1] + [0] * (w - 6))
+        tuser = [0] * mid * n + [1] * n + [0] * (w - (mid + 1) * n)
+        out[4] = AxiStreamFrame(out[4].tdata, tuser=tuser)
         return out
 
     def extra_lines(img):
@@ -329,7 +346,7 @@ async def malformed_then_good(dut):
 
     def cut_mid_line(img):
         out = lines(img)[:6]
-        out[5] = AxiStreamFrame(out[5].tdata[:7], tuser=[0] * 7)
+        out[5] = AxiStreamFrame(out[5].tdata[: mid * n], tuser=[0] * mid * n)
         return out
 
     cases = [
@@ -384,7 +401,7 @@ async def reset_mid_frame(dut):
     w, h = min(MAX_WIDTH, 40), min(MAX_HEIGHT, 30)
     busy = testimages.noise(tb.np_rng, w, h)
     await tb.configure(w, h, 5)
-    await tb.send_lines(video_lines(busy))
+    await tb.send_lines(video_lines(busy, PPC))
     while tb.sink.empty() and not tb.sink.active:
         await RisingEdge(dut.aclk)
     await ClockCycles(dut.aclk, 7)
@@ -393,7 +410,7 @@ async def reset_mid_frame(dut):
     # register reads, must neither be lost nor hang.
     await tb.reset(8, settle=0)
     first = testimages.blurred_noise(tb.np_rng, MAX_WIDTH, MAX_HEIGHT)
-    await tb.send_lines(video_lines(first))
+    await tb.send_lines(video_lines(first, PPC))
     assert await tb.read(regs.ID) == 0x46415354
     assert await tb.read(regs.THRESHOLD) == 20
     assert await tb.read(regs.WIDTH) == MAX_WIDTH
@@ -406,7 +423,7 @@ async def reset_mid_frame(dut):
     # Soft reset while records of a frame are waiting in the output.
     tb.set_stall(0.9)
     await tb.configure(w, h, 5)
-    await tb.send_lines(video_lines(busy))
+    await tb.send_lines(video_lines(busy, PPC))
     while not tb.sink.active:
         await RisingEdge(dut.aclk)
     # Without KEY, or with KEY in a byte not strobed, the command does nothing.
@@ -474,8 +491,8 @@ async def interrupt_and_enable(dut):
     # Disabled: frames are consumed and dropped; enabled again: processed.
     await tb.write(regs.CTRL, regs.CTRL_IRQ_ENABLE.mask)
     frames_before = await tb.read(regs.FRAME_COUNT)
-    await tb.send_lines(video_lines(img))
-    await tb.send_lines(video_lines(img))
+    await tb.send_lines(video_lines(img, PPC))
+    await tb.send_lines(video_lines(img, PPC))
     await tb.idle_output()
     assert tb.sink.empty() and dut.interrupt.value == 0
     await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask)
@@ -519,16 +536,17 @@ async def fifo_full(dut):
 
 @cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def score_video(dut):
-    """m_axis_score: one 8-bit beat per pixel, the golden score saturated to
-    255, tuser on the first pixel, tlast on the last of each line."""
+    """m_axis_score: one 8-bit score per pixel (PPC per beat, pixel 0 in the
+    low byte), the golden score saturated to 255, tuser on the first beat,
+    tlast on the last of each line."""
     assert SCORE_VIDEO, "built without SCORE_VIDEO"
     tb = await TB.create(dut)
     await tb.reset()
     rng = tb.np_rng
     frames = [
         (testimages.saturated(rng, MAX_WIDTH, min(MAX_HEIGHT, 16)), 0),
-        (testimages.noise(rng, 23, 9), 5),
-        (testimages.blurred_noise(rng, 9, 7), 1),
+        (testimages.noise(rng, whole_beats(23), 9), 5),
+        (testimages.blurred_noise(rng, whole_beats(9), 7), 1),
     ]
     sender = cocotb.start_soon(tb.check_frames(frames, "with score video", opencv=False))
     for img, t in frames:
@@ -539,7 +557,9 @@ async def score_video(dut):
                 tb.score_sink.recv(compact=False), 50 * img.size, "score line"
             )
             assert len(line.tdata) == w, f"score line {y}: {len(line.tdata)} beats, want {w}"
-            assert list(line.tuser) == [int(y == 0)] + [0] * (w - 1), f"tuser of line {y}"
+            # (The sink repeats a beat's tuser on each of its PPC bytes.)
+            want_tuser = [int(y == 0 and i < PPC) for i in range(w)]
+            assert list(line.tuser) == want_tuser, f"tuser of line {y}"
             assert list(line.tdata) == [int(v) for v in want[y]], f"scores of line {y}"
     await sender
     assert tb.score_sink.empty()
@@ -562,14 +582,15 @@ async def throughput(dut):
         tb.first_pixel = None
         tb.last_records.clear()
         for _ in range(count):
-            await tb.send_lines(video_lines(img))
+            await tb.send_lines(video_lines(img, PPC))
         got = await tb.receive(count, 4 * count * w * h + 10000)
         for frame in got:
             tb.check_frame(frame, golden(img, 10), "throughput")
         clocks = [c - tb.first_pixel for c in tb.last_records]
         results[count] = clocks
         Path(os.environ.get("TB_RESULTS", os.devnull)).write_text(json.dumps(results))
-        bound = 1.01 * count * w * h + 4 * w + 64
+        beats = w * h // PPC
+        bound = 1.01 * count * beats + 4 * w + 64
         dut._log.info(
             "%d x %dx%d: last records at %s clocks (W*H = %d, bound %.0f)",
             count,
@@ -582,7 +603,7 @@ async def throughput(dut):
         assert clocks[-1] <= bound, f"{clocks[-1]} clocks for {count} frames > {bound:.0f}"
         if count > 1:
             steps = [b - a for a, b in zip(clocks, clocks[1:], strict=False)]
-            assert all(s <= 1.01 * w * h for s in steps), f"frame intervals {steps}"
+            assert all(s <= 1.01 * beats for s in steps), f"frame intervals {steps}"
         await ClockCycles(dut.aclk, 50)
     # Without back-pressure the corner FIFO never fills.
     assert await tb.errors() == set()
@@ -603,7 +624,7 @@ async def valids_low_in_reset(dut):
     for trial in range(3):
         await tb.configure(w, h, 0)
         tb.sink.pause = True
-        await tb.send_lines(video_lines(img))
+        await tb.send_lines(video_lines(img, PPC))
 
         async def rises(name: str) -> None:
             for _ in range(50 * w * h):
@@ -660,7 +681,7 @@ async def live_mode(dut):
     n = 3
     pixels = tb.pixels_in
     for _ in range(n):
-        await tb.send_lines(video_lines(img))
+        await tb.send_lines(video_lines(img, PPC))
     # The first start of frame after a configuration write waits while the
     # configuration is applied (4 clocks, also in LIVE mode; the pixel waits in the
     # input buffer and the gate); from then on, none.

@@ -67,6 +67,39 @@ def test_axi_registers_random(request):
     )
 
 
+@pytest.mark.parametrize("ppc", [2, 4])
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_axi_ppc(request, score, ppc):
+    """2 and 4 pixels per clock (PPC) with the 3x3 NMS: the registers (MODE.PPC,
+    WIDTH rounded to whole beats), generated images back to back, the empty
+    frame, the score video (PPC scores per beat), malformed lines counted in
+    beats, with input idles and output stalls."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": score, "NMS": "3x3", "PPC": ppc},
+        testcase="registers,generated_frames,empty_frame,score_video,malformed_then_good",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
+    )
+
+
+@pytest.mark.parametrize("ppc", [2, 4])
+def test_axi_ppc_throughput(request, tmp_path, ppc):
+    """Clocks per frame at 2 and 4 pixels per clock: W x H / PPC clocks per
+    frame back to back (within the bound of the throughput test)."""
+    results = tmp_path / "throughput.json"
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**SMALL, "SCORE": "opencv", "NMS": "3x3", "PPC": ppc},
+        testcase="throughput",
+        name=request.node.nodeid,
+        env={"TB_FRAMES": "3", "TB_RESULTS": str(results)},
+    )
+    print("clocks to each frame's last record:", json.loads(results.read_text()))
+
+
 def test_axi_throughput(request, tmp_path):
     """Clocks per frame without idles or stalls: one 64x48 frame, then three
     back to back."""
