@@ -31,6 +31,7 @@ from fastnms.sim.run import (
     SimError,
     SimResult,
     check_size,
+    generics_for,
     run_rtl,
 )
 from fastnms.sim.timing import Pattern, Timing
@@ -279,6 +280,14 @@ def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
         help="clocks without video after each line (verilator engine)",
     )
     p.add_argument(
+        "--ppc",
+        type=int,
+        choices=(1, 2, 4),
+        default=1,
+        help="pixels per clock of the simulated IP (its PPC generic): 1 (default), 2 or 4; "
+        "2 and 4 need --nms 3x3 and an image width that is a multiple of PPC",
+    )
+    p.add_argument(
         "--vblank",
         type=count_arg,
         default=0,
@@ -307,7 +316,7 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument(
         "--json",
         metavar="OUT.json",
-        help="write width, height, threshold, score, nms, engine, timing, corners, cycles, "
+        help="write width, height, threshold, score, nms, ppc, engine, timing, corners, cycles, "
         "input_stalls, status_flags, wall_seconds (and `frames` for several)",
     )
     return p
@@ -463,8 +472,12 @@ def timing_of(args: argparse.Namespace) -> Timing:
 
 
 def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> SimResult:
+    if args.ppc != 1 and args.nms != "3x3":
+        raise UsageError(
+            f"--ppc {args.ppc} needs --nms 3x3 (the other NMS take one pixel per clock)"
+        )
     for name, img in frames:
-        why = check_size(img)
+        why = check_size(img, args.ppc)
         if why:
             raise UsageError(f"{name}: {why}")
     if args.engine != "verilator" and (args.hblank or args.vblank):
@@ -483,6 +496,7 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             timing=timing_of(args),
             progress=progress,
             announce=announce,
+            generics=generics_for(args.score, args.nms, args.ppc),
         )
     except SimError as e:
         raise UsageError(str(e)) from None
@@ -496,7 +510,8 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
 def frame_summary(name: str, args: argparse.Namespace, frame: FrameResult) -> str:
     w, h = frame.width, frame.height
     return (
-        f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}: "
+        f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}"
+        f"{f' ppc={args.ppc}' if args.ppc != 1 else ''}: "
         f"{frame.records.shape[0]} corners; {frame.cycles} cycles, "
         f"{frame.cycles / (w * h):.4f} cycles per pixel"
     )
@@ -540,6 +555,7 @@ def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim
         "threshold": args.threshold,
         "score": args.score,
         "nms": args.nms,
+        "ppc": args.ppc,
         "engine": args.engine,
         "timing": timing_of(args).as_dict(),
         "corners": sum(int(f.records.shape[0]) for f in sim.frames),

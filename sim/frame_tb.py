@@ -54,9 +54,10 @@ class PatternedSource(AxiStreamSource):
 
 
 class Run:
-    def __init__(self, dut, images: list[np.ndarray], timing: Timing, progress: Path):
+    def __init__(self, dut, images: list[np.ndarray], timing: Timing, progress: Path, ppc: int = 1):
         self.dut = dut
         self.images = images
+        self.ppc = ppc  # pixels per input beat
         self.timing = timing
         self.progress = progress
         self.sizes = [img.size for img in images]
@@ -86,10 +87,10 @@ class Run:
                 if dut.s_axis_video_tready.value == 1:
                     if self.in_pos == 0:
                         self.first_pixel[self.in_frame] = self.cycle
-                    self.in_pos += 1
+                    self.in_pos += self.ppc
                     if self.in_pos == self.images[self.in_frame].shape[1]:
                         self.first_line_seen[self.in_frame].set()
-                    self.pixels_in += 1
+                    self.pixels_in += self.ppc
                     if self.in_pos == self.sizes[self.in_frame]:
                         self.last_pixel[self.in_frame] = self.cycle
                         self.in_frame += 1
@@ -128,7 +129,9 @@ async def run_frames(dut):
     thresholds = [int(t) for t in os.environ["SIM_THRESHOLDS"].split()]
     t = json.loads(os.environ["SIM_TIMING"])
     timing = Timing(Pattern.parse(t["idle"]), Pattern.parse(t["stall"]), int(t["seed"]))
-    run = Run(dut, images, timing, Path(os.environ["SIM_PROGRESS"]))
+    generics = ast.literal_eval(os.environ.get("SIM_GENERICS", "{}"))
+    ppc = int(generics.get("PPC", 1))
+    run = Run(dut, images, timing, Path(os.environ["SIM_PROGRESS"]), ppc)
 
     dut.aresetn.value = 0
     dut.m_axis_corners_tready.value = 0
@@ -143,7 +146,6 @@ async def run_frames(dut):
     axil.read_if.log.setLevel("WARNING")
     await Timer(1, "ns")
     cocotb.start_soon(Clock(dut.aclk, PERIOD_NS, unit="ns").start())
-    generics = ast.literal_eval(os.environ.get("SIM_GENERICS", "{}"))
     AxiProtocolChecker(dut, bool(generics.get("SCORE_VIDEO", False))).start()
     await ClockCycles(dut.aclk, 8)
     dut.aresetn.value = 1
@@ -154,13 +156,13 @@ async def run_frames(dut):
     await RisingEdge(dut.aclk)
     # The source takes the frame at the next edge: pattern clock 0.
     run.start_ns = source.start_ns = get_sim_time("ns") + PERIOD_NS
-    for line in video_lines(images[0]):
+    for line in video_lines(images[0], ppc):
         await source.send(line)
     for i in range(1, len(images)):
         # As the fast engine: once the previous frame's first line is in.
         await run.first_line_seen[i - 1].wait()
         await configure(axil, images[i], thresholds[i])
-        for line in video_lines(images[i]):
+        for line in video_lines(images[i], ppc):
             await source.send(line)
     await run.done.wait()
 

@@ -76,13 +76,19 @@ class SimResult:
         return self.frames[0].records
 
 
-def check_size(img: np.ndarray) -> str | None:
-    """Why the simulated IP cannot take this image, or None."""
+def check_size(
+    img: np.ndarray, ppc: int = 1, max_width: int = MAX_WIDTH, max_height: int = MAX_HEIGHT
+) -> str | None:
+    """Why the simulated IP (PPC pixels per clock, built for max_width x
+    max_height) cannot take this image, or None."""
     h, w = img.shape
-    if w < MIN_SIZE or h < MIN_SIZE:
-        return f"image is {w}x{h}; the IP takes frames from {MIN_SIZE}x{MIN_SIZE}"
-    if w > MAX_WIDTH or h > MAX_HEIGHT:
-        return f"image is {w}x{h}; the simulated IP is built for at most {MAX_WIDTH}x{MAX_HEIGHT}"
+    min_width = MIN_SIZE if ppc == 1 else 8
+    if w < min_width or h < MIN_SIZE:
+        return f"image is {w}x{h}; the IP takes frames from {min_width}x{MIN_SIZE}"
+    if w > max_width or h > max_height:
+        return f"image is {w}x{h}; the simulated IP is built for at most {max_width}x{max_height}"
+    if w % ppc:
+        return f"image is {w} pixels wide: with {ppc} pixels per clock, not a multiple of {ppc}"
     return None
 
 
@@ -99,8 +105,18 @@ def decode_words(words: np.ndarray) -> np.ndarray:
     return recs[np.lexsort((recs[:, 0], recs[:, 1]))].reshape(-1, 3)
 
 
-def generics_for(score: str, nms: str) -> dict[str, object]:
-    return {"MAX_WIDTH": MAX_WIDTH, "MAX_HEIGHT": MAX_HEIGHT, "SCORE": score, "NMS": nms}
+def generics_for(score: str, nms: str, ppc: int = 1) -> dict[str, object]:
+    """The top's generics for the CLI's builds (PPC only when above 1, so that
+    the one-pixel builds keep their names)."""
+    generics: dict[str, object] = {
+        "MAX_WIDTH": MAX_WIDTH,
+        "MAX_HEIGHT": MAX_HEIGHT,
+        "SCORE": score,
+        "NMS": nms,
+    }
+    if ppc != 1:
+        generics["PPC"] = ppc
+    return generics
 
 
 def run_rtl(
@@ -163,7 +179,8 @@ def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) 
             progress(pixels_in, pixels, time.perf_counter() - start)
 
     try:
-        raw = verilator.run(exe, frames, timing, report, power_up_seed)
+        ppc = int(generics.get("PPC", 1))
+        raw = verilator.run(exe, frames, timing, report, power_up_seed, ppc)
     except verilator.EngineError as e:
         raise SimError(f"the fast engine stopped: {e}") from None
     # The drivers send well-formed video: a malformed-frame flag or a frame

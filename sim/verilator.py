@@ -211,12 +211,15 @@ def run(
     timing: Timing,
     progress: Callable[[int, int], None] | None = None,
     power_up_seed: int | None = None,
+    ppc: int = 1,
 ) -> RawRun:
-    """Send `frames` (image, threshold) back to back through the executable.
-    `power_up_seed` randomises the netlist's initial register and memory values."""
+    """Send `frames` (image, threshold) back to back through the executable, in
+    beats of `ppc` pixels (the build's PPC generic). `power_up_seed` randomises
+    the netlist's initial register and memory values."""
     with tempfile.TemporaryDirectory(dir=exe.parent) as tmp:
         job, pixels, records = Path(tmp, "job"), Path(tmp, "pixels"), Path(tmp, "records")
         lines = [f"seed {timing.seed}\n", f"hblank {timing.hblank}\n", f"vblank {timing.vblank}\n"]
+        lines.append(f"ppc {ppc}\n")
         lines += [timing.idle.job_line("idle"), timing.stall.job_line("stall")]
         with open(pixels, "wb") as f:
             for img, threshold in frames:

@@ -8,8 +8,10 @@
 //
 // JOB (text, one setting per line):
 //   seed N | idle rate P | idle bits 0110.. | stall rate P | stall bits ..
-//   hblank N | vblank N | frame WIDTH HEIGHT THRESHOLD
-// PIXELS: the frames' pixels, raster order, one byte each, frame after frame.
+//   hblank N | vblank N | ppc N | frame WIDTH HEIGHT THRESHOLD
+// PIXELS: the frames' pixels, raster order, one byte each, frame after frame;
+// they go in as beats of PPC pixels (the build's generic, `ppc` in the job;
+// default 1), pixel 0 of a beat in the low byte, as UG934 packs video.
 // RECORDS: written with every corner record (tdata, 64-bit little-endian).
 // stdout: one "frame" line per frame and one "done" line (see sim/verilator.py);
 // stderr: "progress PIXELS_IN PIXELS" about once a second, and errors.
@@ -78,7 +80,7 @@ int main(int argc, char** argv) {
   auto context = std::make_unique<VerilatedContext>();
   context->commandArgs(argc, argv);
 
-  uint64_t seed = 1, hblank = 0, vblank = 0;
+  uint64_t seed = 1, hblank = 0, vblank = 0, ppc = 1;
   Pattern idle, stall;
   std::vector<FrameSpec> frames;
   {
@@ -99,12 +101,16 @@ int main(int argc, char** argv) {
         if (std::strcmp(word, "seed") == 0) seed = n;
         else if (std::strcmp(word, "hblank") == 0) hblank = n;
         else if (std::strcmp(word, "vblank") == 0) vblank = n;
+        else if (std::strcmp(word, "ppc") == 0) ppc = n;
         else fail("unknown job setting");
       }
     }
     std::fclose(job);
   }
   if (frames.empty()) fail("no frame in the job");
+  if (ppc != 1 && ppc != 2 && ppc != 4) fail("ppc must be 1, 2 or 4");
+  for (const auto& f : frames)
+    if (f.width % ppc != 0) fail("a frame width is not a multiple of ppc");
   idle.key = splitmix64(seed * 2);
   stall.key = splitmix64(seed * 2 + 1);
 
@@ -274,12 +280,13 @@ int main(int argc, char** argv) {
       if (in_frame == frames.size()) fail("a pixel taken after the last frame");
       FrameResult& r = results[in_frame];
       if (in_pos == 0) r.first_pixel = cycle;
-      ++in_pos;
-      ++pixels_in;
+      in_pos += ppc;
+      pixels_in += ppc;
       video_valid = false;
       progress = true;
       const FrameSpec& f = frames[in_frame];
-      if (++in_line_pos == f.width) {
+      in_line_pos += ppc;
+      if (in_line_pos == f.width) {
         in_line_pos = 0;
         blank = hblank;
         // The next frame's size and threshold, written once this frame's first
@@ -301,9 +308,11 @@ int main(int argc, char** argv) {
         --blank;
       } else if (!idle.at(pattern_clock)) {
         const FrameSpec& f = frames[in_frame];
-        top->s_axis_video_tdata = pixels[pixel_base + in_pos];
+        uint32_t beat = 0;
+        for (uint64_t i = 0; i < ppc; ++i) beat |= uint32_t(pixels[pixel_base + in_pos + i]) << (8 * i);
+        top->s_axis_video_tdata = beat;
         top->s_axis_video_tuser = in_pos == 0;
-        top->s_axis_video_tlast = in_line_pos + 1 == f.width;
+        top->s_axis_video_tlast = in_line_pos + ppc == f.width;
         video_valid = true;
       }
     }

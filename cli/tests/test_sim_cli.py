@@ -55,6 +55,18 @@ def test_sim_writes_the_rtl_corners(photo: Path, tmp_path: Path, capsys, score: 
     assert f"{len(want)} corners; {summary['cycles']} cycles" in line
 
 
+def test_sim_four_pixels_per_clock(photo: Path, tmp_path: Path):
+    """--ppc 4: the corners of the golden model, in a quarter of the clocks."""
+    out_json = tmp_path / "c.json"
+    assert cli.main(["sim", str(photo), "-t", "15", "--ppc", "4", "--json", str(out_json)]) == 0
+    summary = json.loads(out_json.read_text())
+    img = cv2.imread(str(photo), cv2.IMREAD_GRAYSCALE)
+    assert summary["corners"] == len(detect(img, 15, "opencv", "3x3")) > 0
+    assert summary["ppc"] == 4
+    assert 64 * 48 // 4 <= summary["cycles"] <= 64 * 48 // 4 + 8 * 16 + 200, summary
+    assert cli.main(["compare", str(photo), "-t", "15", "--ppc", "4"]) == 0
+
+
 def test_engines_give_the_same_json(photo: Path, tmp_path: Path):
     """--engine cocotb and the default engine: the same corners, cycles and input
     stalls, with idles and stalls."""
@@ -132,11 +144,16 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["--idle", "abc", "IMG"], "expected a rate"),
         (["--hblank", "-1", "IMG"], "expected an integer >= 0"),
         (["EMPTYDIR"], "a directory without image files"),
+        (["--ppc", "4", "--nms", "region4", "IMG"], "--ppc 4 needs --nms 3x3"),
+        (["--ppc", "4", "IMG60"], "not a multiple of 4"),
     ],
 )
 def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
     (tmp_path / "empty").mkdir()
+    narrow = tmp_path / "w62.png"
+    cv2.imwrite(str(narrow), testimages.crop(testimages.real_images()[0], 62, 48))
     subst = {"IMG": str(photo), "EMPTYDIR": str(tmp_path / "empty"), "x.png": str(tmp_path / "x")}
+    subst["IMG60"] = str(narrow)
     status, _, err = run(["sim", *[subst.get(a, a) for a in argv]], capsys)
     assert status == 2
     assert err.startswith("fastnms: error: ") and message in err and err.count("\n") == 1

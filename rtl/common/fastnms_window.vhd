@@ -181,7 +181,7 @@ architecture rtl of fastnms_window is
   -- Output side: position (beat_x, beat_y) of the next beat of the frame
   -- being emitted.
   signal out_state  : out_state_t;
-  signal out_busy   : std_logic; -- out_state /= idle
+  signal out_busy   : std_logic;                          -- out_state /= idle
   signal beat_x     : x_t;
   signal beat_y     : y_t;
   signal out_x_last : std_logic;
@@ -501,7 +501,7 @@ begin
         for lane in 0 to PPC - 1 loop
           out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
         end loop;
-        out_y_in   <= '0';
+        out_y_in <= '0';
         for stage in 1 to TOKEN_LAST loop
           tokens(stage).valid <= '0';
         end loop;
@@ -543,8 +543,7 @@ begin
             win_regs(row, col) <= win_regs(row, col + PPC);
           end loop;
           for lane in 0 to PPC - 1 loop
-            win_regs(row, REG_COLS - PPC + lane) <=
-              column((row * PPC + lane + 1) * DATA_WIDTH - 1 downto (row * PPC + lane) * DATA_WIDTH);
+            win_regs(row, REG_COLS - PPC + lane) <= column((row * PPC + lane + 1) * DATA_WIDTH - 1 downto (row * PPC + lane) * DATA_WIDTH);
           end loop;
         end loop;
       end if;
@@ -555,8 +554,7 @@ begin
   -- Pixel (row r, column c) of the output block is slice r * OUT_COLS + c.
 
   flatten : for index in 0 to WINDOW * OUT_COLS - 1 generate
-    out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <=
-      win_regs(index / OUT_COLS, COL0 + index mod OUT_COLS);
+    out_window((index + 1) * DATA_WIDTH - 1 downto index * DATA_WIDTH) <= win_regs(index / OUT_COLS, COL0 + index mod OUT_COLS);
   end generate flatten;
 
   out_valid  <= tokens(TOKEN_LAST).valid;

@@ -196,6 +196,7 @@ begin
 
   -- One lane per pixel of a beat: its 7x7 window is columns lane ..
   -- lane + 6 of the block.
+
   lanes : for lane in 0 to PPC - 1 generate
 
     signal lane_window : std_logic_vector(WINDOW_SIZE * WINDOW_SIZE * 8 - 1 downto 0);
@@ -207,8 +208,7 @@ begin
   begin
 
     rows : for row in 0 to WINDOW_SIZE - 1 generate
-      lane_window((row + 1) * WINDOW_SIZE * 8 - 1 downto row * WINDOW_SIZE * 8) <=
-        w_window((row * BLOCK_COLS + lane + WINDOW_SIZE) * 8 - 1 downto (row * BLOCK_COLS + lane) * 8);
+      lane_window((row + 1) * WINDOW_SIZE * 8 - 1 downto row * WINDOW_SIZE * 8) <= w_window((row * BLOCK_COLS + lane + WINDOW_SIZE) * 8 - 1 downto (row * BLOCK_COLS + lane) * 8);
     end generate rows;
 
     circle : entity work.fastnms_fast_circle
@@ -262,10 +262,10 @@ begin
     end generate sad;
 
     -- The mask: a pixel outside the border or not a corner scores 0.
-    result_corner(lane) <= corners(STAGES)(lane) and tokens(STAGES).inside(lane);
+    result_corner(lane)                                                <= corners(STAGES)(lane) and tokens(STAGES).inside(lane);
     result_score((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS) <=
-      lane_score when result_corner(lane) = '1' else
-      (others => '0');
+                                                                          lane_score when result_corner(lane) = '1' else
+                                                                          (others => '0');
 
   end generate lanes;
 

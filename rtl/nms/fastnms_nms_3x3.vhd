@@ -108,7 +108,7 @@ architecture rtl of fastnms_nms_3x3 is
   signal s2_x     : x_t;
   signal s2_y     : y_t;
 
-  signal s2_any   : std_logic;
+  signal s2_any : std_logic;
 
 begin
 
@@ -168,16 +168,16 @@ begin
           for row in 0 to 2 loop
             for col in lane to lane + 2 loop
               if row /= 1 or col /= lane + 1 then
-                other               := unsigned(w_window(block_slice(row, col) * SCORE_BITS + SCORE_BITS - 1 downto
-                                                         block_slice(row, col) * SCORE_BITS));
-                s1_above(lane)(n)   <= to_sl(centre > other);
-                n                   := n + 1;
+                other             := unsigned(w_window(block_slice(row, col) * SCORE_BITS + SCORE_BITS - 1 downto
+                                                       block_slice(row, col) * SCORE_BITS));
+                s1_above(lane)(n) <= to_sl(centre > other);
+                n                 := n + 1;
               end if;
             end loop;
           end loop;
           s1_score((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS) <= centre;
-          s2_keep(lane)                                                   <= s1_inside(lane) and
-                                                                             (and s1_above(lane));
+          s2_keep(lane)                                                  <= s1_inside(lane) and
+                                                                            (and s1_above(lane));
         end loop;
         s1_valid  <= w_valid;
         s1_inside <= w_inside;
@@ -204,6 +204,7 @@ begin
 
   -- One pixel per beat: survivors and the end of frame straight out through
   -- a skid buffer.
+
   single_lane : if PPC = 1 generate
 
     signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS downto 0);
@@ -239,6 +240,7 @@ begin
 
   -- Several pixels per beat: the serializer hands the survivors out one
   -- per clock.
+
   several_lanes : if PPC > 1 generate
 
     serializer : entity work.fastnms_nms_serializer

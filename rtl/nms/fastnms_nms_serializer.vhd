@@ -57,7 +57,6 @@ architecture rtl of fastnms_nms_serializer is
   constant BEAT_BITS : positive := 1 + Y_BITS + X_BITS + PPC + PPC * SCORE_BITS;
   constant REC_BITS  : positive := 1 + X_BITS + Y_BITS + SCORE_BITS;
 
-
   -- A beat's records still to hand out: its survivors (bits 0 .. PPC - 1)
   -- and its end of frame (bit PPC), lowest first.
   subtype items_t is std_logic_vector(PPC downto 0);
@@ -192,7 +191,7 @@ begin
                       std_logic_vector(cur_scores((item + 1) * SCORE_BITS - 1 downto item * SCORE_BITS));
         else
           rec_data <= '1' & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
-                      (LANE_BITS - 1 downto 0 => '1') & std_logic_vector(cur_y) &
+                      (LANE_BITS - 1 downto 0  => '1') & std_logic_vector(cur_y) &
                       (SCORE_BITS - 1 downto 0 => '0');
         end if;
         cur_items <= rest;

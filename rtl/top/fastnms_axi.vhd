@@ -689,14 +689,16 @@ begin
   begin
 
     -- Each pixel's score as 8 bits, saturated (the sad score has 12).
+
     saturate : for lane in 0 to PPC - 1 generate
       constant LSB : natural := lane * SCORE_BITS;
     begin
       t_sat(lane * 8 + 7 downto lane * 8) <=
-        (others => '1') when resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8) /=
-                             t_score(LSB + SCORE_BITS - 1 downto LSB) else
-        std_logic_vector(resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8));
+                                             (others => '1') when resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8) /=
+                                                                  t_score(LSB + SCORE_BITS - 1 downto LSB) else
+                                             std_logic_vector(resize(t_score(LSB + SCORE_BITS - 1 downto LSB), 8));
     end generate saturate;
+
     t_in <= t_sof & t_eol & t_sat;
 
     score_buffer : entity work.fastnms_skid_buffer

@@ -165,13 +165,14 @@ architecture rtl of fastnms_axi_regs is
   constant MODE_WORD    : word_t := field(score_code(SCORE), MODE_SCORE_LSB, MODE_SCORE_WIDTH) or
                                     field(nms_code(NMS), MODE_NMS_LSB, MODE_NMS_WIDTH) or
                                     field(PPC, MODE_PPC_LSB, MODE_PPC_WIDTH);
-  -- The narrowest frame (fastnms_window with READ_LATENCY 1): 7 pixels in
-  -- whole beats of PPC, at least two beats.
-  constant MIN_WIDTH    : positive := ((maximum(7, 2 * PPC) + PPC - 1) / PPC) * PPC;
   constant MAX_WORD     : word_t := field(MAX_WIDTH, MAX_SIZE_WIDTH_LSB, MAX_SIZE_WIDTH_WIDTH) or
                                     field(MAX_HEIGHT, MAX_SIZE_HEIGHT_LSB, MAX_SIZE_HEIGHT_WIDTH);
   constant BUILD_WORD   : word_t := field(CORNER_FIFO_DEPTH, BUILD_FIFO_DEPTH_LSB, BUILD_FIFO_DEPTH_WIDTH) or
                                     field(boolean'pos(SCORE_VIDEO), BUILD_SCORE_VIDEO, 1);
+
+  -- The narrowest frame (fastnms_window with READ_LATENCY 1): 7 pixels in
+  -- whole beats of PPC, at least two beats.
+  constant MIN_WIDTH : positive := ((maximum(7, 2 * PPC) + PPC - 1) / PPC) * PPC;
 
   -- Write pipeline: decoded (w_sel, every clock from the stable index), then
   -- wr_en -> merged -> flags1 -> execute (= wr_done).
@@ -184,16 +185,16 @@ architecture rtl of fastnms_axi_regs is
   signal w_width  : word_t; -- WIDTH and HEIGHT after the merge
   signal w_height : word_t;
   -- Clamping flags of the merged WIDTH and HEIGHT, in two steps.
-  signal wd_high    : std_logic;
+  signal wd_high      : std_logic;
   signal wd_low_min   : std_logic;
-  signal wd_above   : std_logic;
-  signal ht_high    : std_logic;
-  signal ht_low_7   : std_logic;
-  signal ht_above   : std_logic;
+  signal wd_above     : std_logic;
+  signal ht_high      : std_logic;
+  signal ht_low_7     : std_logic;
+  signal ht_above     : std_logic;
   signal wd_below_min : std_logic;
-  signal wd_over    : std_logic;
-  signal ht_below_7 : std_logic;
-  signal ht_over    : std_logic;
+  signal wd_over      : std_logic;
+  signal ht_below_7   : std_logic;
+  signal ht_over      : std_logic;
 
   -- Read: decoded every clock from the stable index.
   signal r_sel : sel_t;
@@ -277,20 +278,20 @@ begin
         end loop;
       end if;
 
-      w_flags1 <= w_merged;
-      wd_high  <= or w_width(REG_DATA_WIDTH - 1 downto 16);
+      w_flags1   <= w_merged;
+      wd_high    <= or w_width(REG_DATA_WIDTH - 1 downto 16);
       wd_low_min <= not at_least(unsigned(w_width(15 downto 0)), MIN_WIDTH);
-      wd_above <= at_least(unsigned(w_width(15 downto 0)), MAX_WIDTH + 1);
-      ht_high  <= or w_height(REG_DATA_WIDTH - 1 downto 16);
-      ht_low_7 <= not at_least(unsigned(w_height(15 downto 0)), 7);
-      ht_above <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
+      wd_above   <= at_least(unsigned(w_width(15 downto 0)), MAX_WIDTH + 1);
+      ht_high    <= or w_height(REG_DATA_WIDTH - 1 downto 16);
+      ht_low_7   <= not at_least(unsigned(w_height(15 downto 0)), 7);
+      ht_above   <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
 
-      do_write   <= w_flags1;
+      do_write     <= w_flags1;
       wd_below_min <= wd_low_min and not wd_high;
-      wd_over    <= wd_above or wd_high;
-      ht_below_7 <= ht_low_7 and not ht_high;
-      ht_over    <= ht_above or ht_high;
-      key_ok     <= to_sl(unsigned(w_data(CMD_KEY_LSB + CMD_KEY_WIDTH - 1 downto CMD_KEY_LSB)) = CMD_KEY_VALUE);
+      wd_over      <= wd_above or wd_high;
+      ht_below_7   <= ht_low_7 and not ht_high;
+      ht_over      <= ht_above or ht_high;
+      key_ok       <= to_sl(unsigned(w_data(CMD_KEY_LSB + CMD_KEY_WIDTH - 1 downto CMD_KEY_LSB)) = CMD_KEY_VALUE);
 
       rd_done <= rd_en;
       if rd_en = '1' then

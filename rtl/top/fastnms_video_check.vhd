@@ -93,9 +93,9 @@ begin
   begin
 
     if rising_edge(clk) then
-      p_valid  <= pixel;
-      p_sof    <= pixel_sof;
-      p_eol    <= pixel_eol;
+      p_valid <= pixel;
+      p_sof   <= pixel_sof;
+      p_eol   <= pixel_eol;
       -- Beats per line minus 2 (the subtraction first: the shift is wiring).
       cfg_w_m2 <= shift_right(cfg_width - 2 * PPC, PPC / 2);
       cfg_h_m2 <= cfg_height - 2;
@@ -125,8 +125,8 @@ begin
           err_eol_late <= x_last and not p_sof;
           late         <= (late or x_last) and not p_sof;
           -- (With two beats per line the beat after a start of frame ends it.)
-          x_last       <= (to_sl(x = w_m2) and not x_last and not p_sof) or
-                          (p_sof and to_sl(cfg_w_m2 = 0));
+          x_last <= (to_sl(x = w_m2) and not x_last and not p_sof) or
+                    (p_sof and to_sl(cfg_w_m2 = 0));
           if p_sof = '1' then
             y_last <= '0';
           end if;

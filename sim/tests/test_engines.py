@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
-from fastnms.sim.run import SimResult, check_size, run_rtl
+from fastnms.sim.run import SimResult, check_size, generics_for, run_rtl
 from fastnms.sim.timing import Pattern, Timing
 from fastnms.testing import images as testimages
 
@@ -64,6 +64,40 @@ def test_engines_agree(score: str, nms: str, rng, seed):
     # The pauses cost clocks; at one pixel per clock a free 3x3 frame takes W x H
     # plus its fill, and no input clock is lost to idles.
     assert results["busy"].cycles > results["free"].cycles
+
+
+@pytest.mark.parametrize("score", SCORES)
+def test_engines_four_pixels_per_clock(score: str, rng, seed):
+    """PPC 4 (opencv/sad + 3x3, MAX 1920x1080): both engines agree with idles and
+    stalls; without them every frame after the first takes its W x H / 4 beats
+    in W x H / 4 + 4 clocks (the top's configuration hold), also a 1920x1080
+    photograph, with the golden model's records."""
+    generics = generics_for(score, "3x3", 4)
+    photo = testimages.cover(testimages.crop(testimages.real_images()[1], 480, 270), 1920, 1080)
+    # Each frame at least as wide as the one before (a narrower frame waits
+    # for the end of the wider one's last rows, docs/fastnms_window.md).
+    frames = [
+        (testimages.checkerboard(rng, 24, 16), 20),
+        (testimages.blurred_noise(rng, 32, 20), 4),
+        (testimages.crop(testimages.real_images()[0], 72, 40), 15),
+        (photo, 20),
+        (photo, 10),
+    ]
+    free = run_rtl(frames, score, "3x3", generics=generics)
+    assert_golden(free, frames, score, "3x3", seed)
+    for i, ((img, _), f) in enumerate(zip(frames, free.frames, strict=True)):
+        if i:
+            beats = img.size // 4
+            # The 4 stalls: the top's hold at a start of frame after a
+            # register write (docs/fastnms_axi.md), the only ones.
+            assert f.input_stalls == 4, f"frame {i}: {f.input_stalls} input stalls"
+            assert f.last_pixel - f.first_pixel + 1 == beats + 4, f"frame {i}: not 4 px/clock"
+    busy = Timing(idle=Pattern(rate=0.25), stall=Pattern(rate=0.4), seed=seed % 1000)
+    small = frames[:3]
+    fast = run_rtl(small, score, "3x3", timing=busy, generics=generics)
+    assert_golden(fast, small, score, "3x3", seed)
+    slow = run_rtl(small, score, "3x3", engine="cocotb", timing=busy, generics=generics)
+    assert_same_run(fast, slow)
 
 
 def test_engines_agree_without_pauses(rng, seed):
