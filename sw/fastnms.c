@@ -234,6 +234,7 @@ int fastnms_probe(const struct fastnms_regs_io *io, struct fastnms_info *info)
         info->score_video = FIELD(build, BUILD_SCORE_VIDEO) != 0u;
         info->score = (uint8_t)FIELD(mode, MODE_SCORE);
         info->nms = (uint8_t)FIELD(mode, MODE_NMS);
+        info->ppc = (uint8_t)FIELD(mode, MODE_PPC);
     }
     return FASTNMS_OK;
 }

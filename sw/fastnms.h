@@ -147,6 +147,7 @@ struct fastnms_info {
     bool score_video;            /* BUILD.SCORE_VIDEO: m_axis_score is built */
     uint8_t score;               /* MODE.SCORE: FASTNMS_MODE_SCORE_OPENCV or _SAD */
     uint8_t nms;                 /* MODE.NMS: FASTNMS_MODE_NMS_NONE, _3X3, _REGION4, _REGION8 */
+    uint8_t ppc;                 /* MODE.PPC: pixels per beat of the video (1, 2, 4) */
 };
 
 struct fastnms_counters {

@@ -23,6 +23,7 @@ ILLEGAL = {
     "fastnms_nms_3x3": ({"MAX_HEIGHT": 2}, "MAX_WIDTH and MAX_HEIGHT must be in 3 .. 65535"),
     "fastnms_nms_none": ({"MAX_HEIGHT": 70000}, "MAX_WIDTH must be in 2 .. 65535"),
     "fastnms_nms_region": ({"MAX_WIDTH": 2}, "MAX_WIDTH must be at least 3"),
+    "fastnms_nms_serializer": ({"PPC": 3}, "PPC must be 2 or 4"),
     "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
     "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
     "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),
@@ -43,6 +44,14 @@ MORE = [
     ("fastnms_nms_region", {"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),
     ("fastnms_axi", {"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_window", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
+    ("fastnms_window", {"PPC": 3}, "PPC must be 1, 2 or 4"),
+    ("fastnms_window", {"PPC": 4, "MAX_WIDTH": 30}, "MAX_WIDTH must be a multiple of PPC"),
+    ("fastnms_nms_serializer", {"DEPTH": 2}, "DEPTH must be at least 4"),
+    ("fastnms_core", {"PPC": 4, "NMS": "region4"}, 'NMS "region4" takes one pixel per clock'),
+    ("fastnms_core", {"PPC": 3}, "PPC must be 1, 2 or 4"),
+    ("fastnms_axi", {"PPC": 2, "NMS": "none"}, 'only NMS "3x3" takes 2 or 4 pixels'),
+    ("fastnms_axi", {"PPC": 4, "MAX_WIDTH": 1918}, "PPC must be 1, 2 or 4, and MAX_WIDTH"),
+    ("fastnms_video_check", {"PPC": 3}, "PPC must be 1, 2 or 4"),
 ]
 
 _GENERIC = re.compile(r"\bentity\s+(\w+)\s+is\s+generic\s*\(", re.IGNORECASE)

@@ -207,7 +207,7 @@ proc fastnms::gui_list {core name values} {
 }
 
 fastnms::gui_param $core MAX_WIDTH {Maximum frame width} \
-    {Widest frame in pixels; the runtime width (register WIDTH) is 7 .. MAX_WIDTH. Sets the line-buffer size.}
+    {Widest frame in pixels (a multiple of PPC); the runtime width (register WIDTH) is 7 (8 with PPC 2 or 4) .. MAX_WIDTH. Sets the line-buffer size.}
 fastnms::gui_range $core MAX_WIDTH 7 8192
 fastnms::gui_param $core MAX_HEIGHT {Maximum frame height} \
     {Tallest frame in lines; the runtime height (register HEIGHT) is 7 .. MAX_HEIGHT.}
@@ -221,6 +221,9 @@ fastnms::gui_list $core NMS {3x3 none region4 region8}
 fastnms::gui_param $core SCORE_VIDEO {Score video output} \
     {Build m_axis_score, the per-pixel score as 8-bit video.}
 set_property widget checkBox [ipgui::get_guiparamspec -name SCORE_VIDEO -component $core]
+fastnms::gui_param $core PPC {Pixels per clock} \
+    {Pixels per beat of s_axis_video and m_axis_score (1, 2 or 4; pixel 0 in the low byte). 2 and 4 need NMS 3x3 (an elaboration assert says so otherwise) and a frame width that is a multiple of PPC.}
+fastnms::gui_list $core PPC {1 2 4}
 fastnms::gui_param $core CORNER_FIFO_DEPTH {Corner FIFO depth} \
     {Corner records buffered ahead of m_axis_corners.}
 fastnms::gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8192 16384}

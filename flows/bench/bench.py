@@ -58,6 +58,10 @@ SCORE_BITS = {"opencv": 8, "sad": 12}
 WIDTH, HEIGHT = 1920, 1080
 FRAMES = 3
 THRESHOLD = 20
+# Several pixels per clock (issue 15): 3840x2160 photographs (scaled up) through
+# the top built with PPC 4, opencv + 3x3.
+UHD_WIDTH, UHD_HEIGHT, UHD_PPC = 3840, 2160, 4
+UHD_FRAMES = 2
 STATUS_ERRORS = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
 
 
@@ -442,6 +446,12 @@ def main(argv: list[str] | None = None) -> None:
         default=COCOTB_ROWS,
         help="lines of the cocotb engine's timed band (0: no cocotb run)",
     )
+    ap.add_argument(
+        "--uhd-frames",
+        type=int,
+        default=UHD_FRAMES,
+        help=f"{UHD_WIDTH}x{UHD_HEIGHT} frames through the PPC {UHD_PPC} top (0: none)",
+    )
     ap.add_argument("--no-check", action="store_true", help="do not compare with the golden")
     ap.add_argument("--out", type=Path, default=BENCH_BUILD / "summary.json")
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
@@ -541,6 +551,25 @@ def run(args: argparse.Namespace) -> dict:
             "equal to the fast engine's"
         )
 
+    uhd = None
+    if args.uhd_frames > 0:
+        t = time.perf_counter()
+        uhd_frames, uhd_sources = bench_frames(UHD_WIDTH, UHD_HEIGHT, args.uhd_frames)
+        gens = {**bench_generics("opencv", "3x3", UHD_WIDTH, UHD_HEIGHT), "PPC": UHD_PPC}
+        print(f"bench: {args.uhd_frames} frames {UHD_WIDTH}x{UHD_HEIGHT} at PPC {UHD_PPC} ...")
+        build = build_engines([gens], 1)[0]
+        uhd = simulate(
+            "opencv", "3x3", list(uhd_frames), args.threshold, gens, not args.no_check, build
+        )
+        uhd["ppc"] = UHD_PPC
+        uhd["photographs"] = uhd_sources
+        phases["uhd"] = time.perf_counter() - t
+        print(
+            f"bench: {uhd['config']} at PPC {UHD_PPC}: input "
+            f"{uhd['input_clocks_per_pixel']:.5f} clocks/pixel, frame intervals "
+            f"{uhd['frame_interval_clocks']} clocks, latency {uhd['latency_clocks']} clocks"
+        )
+
     memory = [
         {"config": f"{s}-{n}-{args.width}", **region_memory(args.width, args.height, SCORE_BITS[s])}
         for s, n in MEMORY_CONFIGS
@@ -555,6 +584,7 @@ def run(args: argparse.Namespace) -> dict:
             "fit": "cv2.resize to cover, centre crop",
         },
         "simulation": sims,
+        "uhd": uhd,
         "engines": engines,
         "region_memory": memory,
         "software": software,

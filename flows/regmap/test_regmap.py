@@ -37,17 +37,20 @@ def test_reset_values_follow_the_generics():
         "NMS": "none",
         "CORNER_FIFO_DEPTH": 64,
         "SCORE_VIDEO": True,
+        "PPC": 1,
     }
     assert regs.reset_value("ID", generics) == 0x46415354
     assert regs.reset_value("CTRL", generics) == 1
     assert regs.reset_value("THRESHOLD", generics) == 20
     assert regs.reset_value("WIDTH", generics) == 320
-    assert regs.reset_value("MODE", generics) == 0x01
+    assert regs.reset_value("MODE", generics) == 0x101  # PPC 1, NMS none, SCORE sad
     assert regs.reset_value("MAX_SIZE", generics) == 240 << 16 | 320
     assert regs.reset_value("BUILD", generics) == 1 << 16 | 64
     generics.update(SCORE="opencv", NMS="3x3", SCORE_VIDEO=False)
-    assert regs.reset_value("MODE", generics) == 0x10
+    assert regs.reset_value("MODE", generics) == 0x110
     assert regs.reset_value("BUILD", generics) == 64
+    generics.update(PPC=4)
+    assert regs.reset_value("MODE", generics) == 0x410  # PPC 4
 
 
 def test_docs_table_lists_every_field():

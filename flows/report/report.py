@@ -51,6 +51,17 @@ AMD = {
     "pixels_per_clock": "1",
 }
 
+# AMD's `xf::cv::fast` at 8 pixels per clock (the issue-15 comparison; Vitis
+# HLS estimates from AMD's documentation, as the 1-pixel figures above).
+AMD_8PPC = {"lut": 20956, "fmax_mhz": 150, "ppc": 8}
+AMD_1PPC_FMAX = 300
+# 3840 x 2160 at 60 frames/s: pixels per second.
+UHD60_MPIXELS = 3840 * 2160 * 60 / 1e6
+# Targets of issue 15: LUT and BRAM at PPC 4 against PPC 1, Fmax within 10 %.
+PPC_LUT_RATIO = 3.5
+PPC_BRAM_RATIO = 1.5
+PPC_FMAX_DROP = 0.10
+
 # The targets of issue 6 (limits as stated there).
 PAPER_HALF_LUT = 2980
 PAPER_HALF_FF = 4140
@@ -353,9 +364,134 @@ def target_lines(targets: list[dict]) -> list[str]:
 # ---- sections ---------------------------------------------------------------------
 
 
+def ppc_lines(summary: list[dict]) -> list[str]:
+    """The several-pixels-per-clock table (issue 15) and its targets, from the
+    rows `make synth` adds at 3840x2160 for PPC 1, 2, 4."""
+    rows = [r for r in summary if r.get("ppc_table")]
+    if not rows:
+        return []
+    out = ["### Several pixels per clock (PPC)", ""]
+    width = rows[0]["generics"]["MAX_WIDTH"]
+    height = rows[0]["generics"]["MAX_HEIGHT"]
+    out.append(
+        f"`opencv` + `3x3` at MAX_WIDTH {width}, MAX_HEIGHT {height}, for PPC 1, 2 and 4 "
+        "(generic `PPC`). Mpixel/s = PPC x Fmax (ECP5-8, the top only). 3840x2160 at "
+        f"60 frames/s needs {UHD60_MPIXELS:.1f} Mpixel/s, i.e. "
+        f"{UHD60_MPIXELS / 4:.1f} MHz at PPC 4."
+    )
+    out.append("")
+    table_rows = []
+    for r in sorted(rows, key=lambda r: (r["entity"] != "fastnms_axi", r["ppc"])):
+        fmax = r.get("ecp5_fmax_mhz")
+        table_rows.append(
+            [
+                f"`{r['config']}`",
+                str(r["ppc"]),
+                lut_text(r),
+                num(lut_total(r) // r["ppc"]),
+                num(r["ff"]),
+                str(r["bram18_equiv"]),
+                str(r["logic_levels"]),
+                "—" if fmax is None else f"{fmax:.0f} MHz",
+                "—" if fmax is None else f"{r['ppc'] * fmax:.0f}",
+            ]
+        )
+    for ppc, lut, fmax in ((1, AMD["lut"], AMD_1PPC_FMAX), (8, AMD_8PPC["lut"], 150)):
+        table_rows.append(
+            [
+                f"AMD `xf::cv::fast`, {ppc} pixel(s)/clock (HLS estimate)",
+                str(ppc),
+                num(lut),
+                num(lut // ppc),
+                "—",
+                "—",
+                "—",
+                f"{fmax} MHz (UltraScale+)",
+                f"{ppc * fmax}",
+            ]
+        )
+    out += table(
+        [
+            "configuration",
+            "PPC",
+            "LUT",
+            "LUT per pixel lane",
+            "FF",
+            "BRAM18 equiv.",
+            "logic levels",
+            "Fmax",
+            "Mpixel/s",
+        ],
+        table_rows,
+    )
+    out.append("")
+    out += target_lines(ppc_targets(rows))
+    out.append("")
+    return out
+
+
+def ppc_targets(rows: list[dict]) -> list[dict]:
+    """Issue 15's targets: per entity, PPC 4 against PPC 1."""
+    out = []
+    for entity in ("fastnms_axi", "fastnms_core"):
+        by_ppc = {r["ppc"]: r for r in rows if r["entity"] == entity}
+        one, four = by_ppc.get(1), by_ppc.get(4)
+        if not one or not four:
+            continue
+        name = f"`{entity}` PPC 4 vs 1"
+        lut_ratio = lut_total(four) / lut_total(one)
+        out.append(
+            {
+                "id": "ppc-lut",
+                "target": f"LUT at PPC 4 at most {PPC_LUT_RATIO}x PPC 1",
+                "on": name,
+                "measured": f"{lut_total(four)} / {lut_total(one)} = {lut_ratio:.2f}x",
+                "met": lut_ratio <= PPC_LUT_RATIO,
+                "margin": f"{PPC_LUT_RATIO - lut_ratio:+.2f}x",
+            }
+        )
+        bram_ratio = four["bram18_equiv"] / max(1, one["bram18_equiv"])
+        out.append(
+            {
+                "id": "ppc-bram",
+                "target": f"BRAM at PPC 4 at most {PPC_BRAM_RATIO}x PPC 1",
+                "on": name,
+                "measured": f"{four['bram18_equiv']} / {one['bram18_equiv']} BRAM18 "
+                f"= {bram_ratio:.2f}x",
+                "met": bram_ratio <= PPC_BRAM_RATIO,
+                "margin": f"{PPC_BRAM_RATIO - bram_ratio:+.2f}x",
+            }
+        )
+        f1, f4 = one.get("ecp5_fmax_mhz"), four.get("ecp5_fmax_mhz")
+        if f1 and f4:
+            out.append(
+                {
+                    "id": "ppc-fmax",
+                    "target": f"ECP5 Fmax at PPC 4 within {PPC_FMAX_DROP:.0%} of PPC 1",
+                    "on": name,
+                    "measured": f"{f4:.0f} vs {f1:.0f} MHz ({f4 / f1 - 1:+.0%})",
+                    "met": f4 >= (1 - PPC_FMAX_DROP) * f1,
+                    "margin": f"{f4 - (1 - PPC_FMAX_DROP) * f1:+.0f} MHz",
+                }
+            )
+            need = UHD60_MPIXELS / 4
+            out.append(
+                {
+                    "id": "ppc-uhd60",
+                    "target": f"3840x2160 at 60 frames/s: {need:.1f} MHz at PPC 4",
+                    "on": f"`{four['config']}`",
+                    "measured": f"{f4:.0f} MHz (ECP5-8)",
+                    "met": f4 >= need,
+                    "margin": f"{f4 - need:+.1f} MHz ({f4 / need - 1:+.0%})",
+                }
+            )
+    return out
+
+
 def synth_section(summary: list[dict], info: dict) -> str:
-    tops = [r for r in summary if r["entity"] == "fastnms_axi"]
-    cores = [r for r in summary if r["entity"] == "fastnms_core"]
+    main_rows = [r for r in summary if not r.get("ppc_table")]
+    tops = [r for r in main_rows if r["entity"] == "fastnms_axi"]
+    cores = [r for r in main_rows if r["entity"] == "fastnms_core"]
     width = summary[0]["generics"]["MAX_WIDTH"] if summary else 0
     height = summary[0]["generics"].get("MAX_HEIGHT", "?") if summary else 0
     out = ["## Synthesis and place and route (`make synth`)", ""]
@@ -424,6 +560,7 @@ def synth_section(summary: list[dict], info: dict) -> str:
     out.append("")
     out += target_lines(synth_targets(summary))
     out.append("")
+    out += ppc_lines(summary)
     out.append("### Every configuration and block")
     out.append("")
     detail = []
@@ -580,6 +717,46 @@ def _unique(summary: list[dict]) -> list[dict]:
     return out
 
 
+def uhd_lines(uhd: dict | None) -> list[str]:
+    """The 3840x2160 run of the top built with several pixels per clock."""
+    if not uhd:
+        return []
+    w, h, ppc = uhd["width"], uhd["height"], uhd["ppc"]
+    beats = w * h // ppc
+    out = [f"### {w}x{h} at {ppc} pixels per clock", ""]
+    out.append(
+        f"`fastnms_axi` built with PPC {ppc}, MAX_WIDTH {w}, MAX_HEIGHT {h}, "
+        f"{uhd['score']} + {uhd['nms']}: {uhd['frames']} photographs scaled to {w}x{h} "
+        f"({', '.join(uhd.get('photographs', []))}), back to back, threshold "
+        f"{uhd['threshold']}, on the fast engine; {ppc} pixels per input beat."
+    )
+    out.append("")
+    out += table(
+        [
+            "input clocks/pixel",
+            f"frame intervals (clocks; W·H/{ppc} = {num(beats)})",
+            "latency per frame (clocks)",
+            "corners per frame",
+            "vs golden",
+            "input stalls",
+            "simulated pixels/s",
+        ],
+        [
+            [
+                f"{uhd['input_clocks_per_pixel']:.5f}",
+                ", ".join(num(c) for c in uhd["frame_interval_clocks"]) or "—",
+                ", ".join(num(c) for c in uhd["latency_clocks"]),
+                ", ".join(num(c) for c in uhd["corners"]),
+                "equal" if uhd["checked"] else "not checked",
+                num(uhd["input_stalls"]),
+                num(uhd["sim_pixels_per_second"]),
+            ]
+        ],
+    )
+    out.append("")
+    return out
+
+
 def bench_section(bench: dict) -> str:
     fr = bench["frames"]
     w, h, n = fr["width"], fr["height"], fr["count"]
@@ -649,6 +826,7 @@ def bench_section(bench: dict) -> str:
         "cached: built by an earlier run from the same sources and tools."
     )
     out.append("")
+    out += uhd_lines(bench.get("uhd"))
     out += engine_lines(bench.get("engines", []))
     out.append("### Target")
     out.append("")

@@ -106,6 +106,7 @@ def check_report(summary, info, tmp_path):
     assert both.count("<!-- synth:begin") == 1 and both.count("<!-- bench:end -->") == 1
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
+    assert "### 3840x2160 at 4 pixels per clock" in both and "| 0.25000 | 2 073 604 |" in both
     assert "| **total** |  | **75 575** |" in both
     # The engines' speeds and the build times.
     assert "| fast (GHDL netlist + Verilator) |" in both and "| cocotb (GHDL + cocotb) |" in both
@@ -162,6 +163,27 @@ def fake_bench() -> dict:
             "fit": "cv2.resize to cover, centre crop",
         },
         "simulation": [sim, {**sim, "build_seconds": None}],
+        "uhd": {
+            **bench_sim.derive(
+                {
+                    **raw,
+                    "frames": 2,
+                    "width": 3840,
+                    "height": 2160,
+                    "first_pixel": [10, 2073614],
+                    "last_pixel": [2073609, 4147213],
+                    "last_record": [2081300, 4154904],
+                    "corners": [5000, 6000],
+                    "frame_input_stalls": [0, 0],
+                },
+                "opencv",
+                "3x3",
+                {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "SCORE": "opencv", "NMS": "3x3", "PPC": 4},
+                0.5,
+            ),
+            "ppc": 4,
+            "photographs": ["a.png"],
+        },
         "engines": [
             bench_sim.fast_engine_speed([sim]),
             {
@@ -213,3 +235,39 @@ def test_docs_figures_are_generated():
         outside = GENERATED.sub("", text)
         found = [m.group(0) for m in MEASURED.finditer(outside)]
         assert not found, f"{page.name}: figures written by hand: {found}"
+
+
+def test_ppc_table_and_targets():
+    """The PPC rows of a summary render as their own table, with the issue-15
+    targets computed from PPC 4 against PPC 1 (figures made up here)."""
+
+    def row(entity: str, ppc: int, lut: int, bram: int, fmax: float | None) -> dict:
+        generics = {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "SCORE": "opencv", "NMS": "3x3"}
+        base = f"opencv-3x3-3840-ppc{ppc}"
+        return {
+            "config": base if entity == "fastnms_axi" else f"{entity}-{base}",
+            "entity": entity,
+            "score": "opencv",
+            "nms": "3x3",
+            "generics": {**generics, **({"PPC": ppc} if ppc > 1 else {})},
+            "ppc": ppc,
+            "ppc_table": True,
+            "lut": lut,
+            "ff": lut,
+            "bram18_equiv": bram,
+            "logic_levels": 4,
+            "ecp5_fmax_mhz": fmax,
+        }
+
+    rows = [row("fastnms_axi", 1, 2000, 10, 160.0), row("fastnms_axi", 4, 7200, 12, 150.0)]
+    rows += [row("fastnms_core", 1, 1800, 9, None), row("fastnms_core", 4, 6000, 9, None)]
+    text = "\n".join(report.ppc_lines(rows))
+    assert "| `opencv-3x3-3840-ppc4` | 4 | 7200 | 1800 |" in text, text
+    assert "600" in text  # 150 MHz x 4 pixels
+    targets = {(t["id"], t["on"]): t for t in report.ppc_targets(rows)}
+    lut_top = targets[("ppc-lut", "`fastnms_axi` PPC 4 vs 1")]
+    assert not lut_top["met"] and "3.60x" in lut_top["measured"]
+    assert targets[("ppc-lut", "`fastnms_core` PPC 4 vs 1")]["met"]  # 3.33x
+    assert targets[("ppc-fmax", "`fastnms_axi` PPC 4 vs 1")]["met"]  # -6 %
+    assert targets[("ppc-uhd60", "`opencv-3x3-3840-ppc4`")]["met"]  # 150 >= 124.4
+    assert ("ppc-fmax", "`fastnms_core` PPC 4 vs 1") not in targets  # no place and route

@@ -32,6 +32,11 @@ from flows.synth.axi_top import levels_outside, synthesizable_top
 
 WIDTH, HEIGHT = 1920, 1080
 CONFIGS = [("opencv", "3x3"), ("sad", "region4"), ("opencv", "region8")]
+# Several pixels per clock (issue 15): the top and the core of these
+# configurations at 3840x2160, for each PPC.
+PPC_WIDTH, PPC_HEIGHT = 3840, 2160
+PPC_CONFIGS = [("opencv", "3x3")]
+PPCS = (1, 2, 4)
 SCORE_BITS = {"opencv": 8, "sad": 12}
 ENTITIES = ["fastnms_axi", "fastnms_core", "fastnms_fast_detector", "nms", "blocks"]
 SUMMARY = synth.SYNTH_BUILD / "summary.json"
@@ -58,6 +63,7 @@ class Entry:
     nms: str
     generics: dict[str, object]
     figures: dict[str, object] = field(default_factory=dict)
+    ppc_table: bool = False  # a row of the several-pixels-per-clock comparison
 
     @property
     def key(self) -> tuple:
@@ -101,12 +107,33 @@ def entries(
     return [rows[e] for e in entities if e != "blocks"]
 
 
+def ppc_entries(score: str, nms: str) -> list[Entry]:
+    """The top and the core at PPC_WIDTH x PPC_HEIGHT for each PPC (named
+    `SCORE-NMS-3840-ppcN`; PPC stays out of the generics at 1)."""
+    rows = []
+    for ppc in PPCS:
+        generics: dict[str, object] = {
+            "MAX_WIDTH": PPC_WIDTH,
+            "MAX_HEIGHT": PPC_HEIGHT,
+            "SCORE": score,
+            "NMS": nms,
+        }
+        if ppc != 1:
+            generics["PPC"] = ppc
+        base = f"{score}-{nms}-{PPC_WIDTH}-ppc{ppc}"
+        rows.append(Entry(base, "fastnms_axi", score, nms, generics, ppc_table=True))
+        rows.append(
+            Entry(f"fastnms_core-{base}", "fastnms_core", score, nms, generics, ppc_table=True)
+        )
+    return rows
+
+
 def block_entries(width: int, height: int) -> list[Entry]:
     """The building blocks on their own (`blocks` in `entities`), once, at the
     generics they have inside the top at this size: the window and its line
     buffer and RAM, the corner FIFO and skid buffer (32-bit records of opencv at
-    1920x1080), the 32-bit statistics counter, the position counter, and the
-    `none` NMS."""
+    1920x1080), the 32-bit statistics counter, the position counter, the
+    `none` NMS, and the 3x3 NMS's serializer for 4 pixels per clock."""
     size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
     blocks = {
         "fastnms_window": size,
@@ -117,6 +144,14 @@ def block_entries(width: int, height: int) -> list[Entry]:
         "fastnms_counter": {"WIDTH": 32},
         "fastnms_position": {"X_BITS": 11, "Y_BITS": 11},
         "fastnms_nms_none": {**size, "SCORE_BITS": 8},
+        # As in the 3x3 NMS with 4 pixels per clock at this width.
+        "fastnms_nms_serializer": {
+            "PPC": 4,
+            "X_BITS": (width - 1).bit_length(),
+            "Y_BITS": height.bit_length(),
+            "SCORE_BITS": 8,
+            "DEPTH": width // 8 + 16,
+        },
     }
     return [Entry(f"{e}-{width}", e, "-", "-", g) for e, g in blocks.items()]
 
@@ -160,6 +195,7 @@ def run(
     *,
     entities: list[str] = ENTITIES,
     ecp5_for: str | set[str] = "all",
+    ppc_configs: tuple[tuple[str, str], ...] | list[tuple[str, str]] = (),
     jobs: int = 2,
     root: Path | None = None,
     seed: int = ecp5.SEED,
@@ -167,7 +203,8 @@ def run(
 ) -> tuple[list[dict], dict]:
     """Synthesize every entry of `configs`; return the summary (a list of dicts)
     and the run's facts (tools, wall times). `ecp5_for`: "all", "top"
-    (fastnms_axi only), "none", or a set of entity names. Each distinct (entity, generics) is
+    (fastnms_axi only), "none", or a set of entity names. `ppc_configs` adds
+    the PPC rows (ppc_entries). Each distinct (entity, generics) is
     synthesized once; the outputs go under `root` (build/synth/results)."""
     start = time.perf_counter()
     load = round(os.getloadavg()[0], 1)
@@ -176,6 +213,7 @@ def run(
     rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
     if "blocks" in entities:
         rows += block_entries(width, height)
+    rows += [e for score, nms in ppc_configs for e in ppc_entries(score, nms)]
     unique: dict[tuple, Entry] = {}
     for row in rows:
         unique.setdefault(row.key, row)
@@ -196,6 +234,8 @@ def run(
     ecp5_entities = named[ecp5_for] if isinstance(ecp5_for, str) else set(ecp5_for)
 
     def wants_ecp5(row: Entry) -> bool:
+        if row.ppc_table and row.entity != "fastnms_axi":
+            return False  # the PPC comparison places the tops only
         return ecp5_entities is None or row.entity in ecp5_entities
 
     # Longest first: place and route, then the largest netlists.
@@ -243,6 +283,8 @@ def run(
                 "score": row.score,
                 "nms": row.nms,
                 "generics": row.generics,
+                "ppc": int(row.generics.get("PPC", 1)),
+                "ppc_table": row.ppc_table,
                 **figures,
             }
         )
@@ -271,6 +313,11 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--configs", default=",".join(f"{s}-{n}" for s, n in CONFIGS))
     ap.add_argument("--entities", default=",".join(ENTITIES))
     ap.add_argument("--ecp5", choices=["all", "top", "none"], default="all")
+    ap.add_argument(
+        "--ppc-configs",
+        default=",".join(f"{s}-{n}" for s, n in PPC_CONFIGS),
+        help="configurations synthesized at 3840x2160 for PPC 1, 2, 4 ('' for none)",
+    )
     ap.add_argument("--jobs", type=int, default=int(os.environ.get("JOBS", "2")))
     ap.add_argument("--seed", type=int, default=ecp5.SEED)
     ap.add_argument("--out", type=Path, default=SUMMARY)
@@ -283,6 +330,7 @@ def main(argv: list[str] | None = None) -> None:
         args.height,
         entities=args.entities.split(","),
         ecp5_for=args.ecp5,
+        ppc_configs=[tuple(c.split("-", 1)) for c in args.ppc_configs.split(",") if c],
         jobs=args.jobs,
         seed=args.seed,
     )

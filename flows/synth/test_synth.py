@@ -19,6 +19,9 @@ DEEPER = {
     # abc chains the window generators' counter controls (register -> 4
     # LUTs -> the counters' reset/enable) differently (docs/fastnms_core.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
+    # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
+    # deeper beside the output stage: abc chains the FIFO's level flags.
+    "fastnms_nms_serializer": MAX_LOGIC_LEVELS + 1,
     "fastnms_nms_region": 17,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")

@@ -81,8 +81,8 @@ MUTATIONS = {
         "HAS_TKEEP 0 but the port is present",
     ),
     "tuser width": (
-        r"s_axis_video, TDATA_NUM_BYTES 1, TUSER_WIDTH 1",
-        "s_axis_video, TDATA_NUM_BYTES 1, TUSER_WIDTH 2",
+        r"(s_axis_video, TDATA_NUM_BYTES \" & integer'image\(PPC\) & \", )TUSER_WIDTH 1",
+        r"\1TUSER_WIDTH 2",
         "interface s_axis_video: TUSER_WIDTH 2 but TUSER is 1 bits",
     ),
     "has_prot": (r"HAS_PROT 1", "HAS_PROT 0", "HAS_PROT 0 but the port is present"),
@@ -126,3 +126,21 @@ def test_a_broken_attribute_fails(name: str) -> None:
     assert count == 1, f"the mutation '{name}' matches {count} times: update it to the VHDL"
     problems = xinterface.problems(xinterface.parse(text))
     assert any(expected in p for p in problems), "\n".join(problems) or "no problem found"
+
+
+@pytest.mark.parametrize("ppc", ["2", "4"])
+def test_pixels_per_clock_follow_the_generic(ppc: str) -> None:
+    """With PPC 2 or 4 the video and score TDATA are PPC bytes and so are their
+    TDATA_NUM_BYTES (integer'image(PPC) in the attribute); a constant there fails."""
+    top = xinterface.parse(TOP.read_text(), generics_override={"PPC": ppc})
+    assert top.ports["s_axis_video_tdata"].width == 8 * int(ppc)
+    assert top.ports["m_axis_score_tdata"].width == 8 * int(ppc)
+    assert xinterface.problems(top) == []
+    text, count = re.subn(
+        r"s_axis_video, TDATA_NUM_BYTES \" & integer'image\(PPC\) & \"",
+        "s_axis_video, TDATA_NUM_BYTES 1",
+        TOP.read_text(),
+    )
+    assert count == 1
+    problems = xinterface.problems(xinterface.parse(text, generics_override={"PPC": ppc}))
+    assert any(f"TDATA_NUM_BYTES 1 but TDATA is {8 * int(ppc)} bits" in p for p in problems)

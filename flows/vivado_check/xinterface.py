@@ -95,14 +95,26 @@ def _strip_comments(text: str) -> str:
     return re.sub(r"--[^\n]*", "", text)
 
 
-def _width(kind: str) -> int | None:
+def _integer(expr: str, generics: dict[str, str]) -> int | None:
+    """An integer expression of literals, generics (their values) and + - * /
+    with parentheses, as port bounds use them; None for anything else."""
+    text = re.sub(r"\b([A-Za-z]\w*)\b", lambda m: generics.get(m.group(1).upper(), "?"), expr)
+    if not re.fullmatch(r"[\d\s+\-*/()]+", text):
+        return None
+    return int(eval(text.replace("/", "//"), {"__builtins__": {}}))  # noqa: S307 (digits only)
+
+
+def _width(kind: str, generics: dict[str, str] | None = None) -> int | None:
     kind = kind.strip().lower()
     if kind == "std_logic" or kind == "std_ulogic":
         return 1
-    m = re.fullmatch(r"std_u?logic_vector\s*\(\s*(\d+)\s+(downto|to)\s+(\d+)\s*\)", kind)
+    m = re.fullmatch(r"std_u?logic_vector\s*\(\s*(.+?)\s+(downto|to)\s+(.+?)\s*\)", kind)
     if not m:
         return None
-    high, low = int(m.group(1)), int(m.group(3))
+    upper = {k.upper(): v for k, v in (generics or {}).items()}
+    high, low = _integer(m.group(1), upper), _integer(m.group(3), upper)
+    if high is None or low is None:
+        return None
     return abs(high - low) + 1
 
 
@@ -129,9 +141,13 @@ def _split_declarations(clause: str) -> list[str]:
     return [p.strip() for p in parts if p.strip()]
 
 
-def parse(text: str, entity: str = "fastnms_axi") -> Top:
+def parse(
+    text: str, entity: str = "fastnms_axi", generics_override: dict[str, str] | None = None
+) -> Top:
     """The entity `entity` of a VHDL file: generics, ports and the interface
-    attributes of its declarative part."""
+    attributes of its declarative part. Port widths and `integer'image(G)` in
+    the attributes are evaluated with the generics' defaults, or with the
+    values in `generics` (as a build with those generics would have them)."""
     code = _strip_comments(text)
     m = re.search(
         rf"\bentity\s+{entity}\s+is\b(.*?)\bend\s+entity\s+{entity}\s*;",
@@ -147,6 +163,7 @@ def parse(text: str, entity: str = "fastnms_axi") -> Top:
         default = rest.partition(":=")[2].strip()
         for name in names.split(","):
             generics[name.strip()] = default.strip('"')
+    values = {**generics, **{k: str(v) for k, v in (generics_override or {}).items()}}
     port_clause = _clause(body, "port") or ""
     ports: dict[str, Port] = {}
     for decl in _split_declarations(port_clause):
@@ -155,18 +172,21 @@ def parse(text: str, entity: str = "fastnms_axi") -> Top:
             raise ValueError(f"cannot parse the port declaration '{decl}'")
         for name in mm.group(1).split(","):
             ports[name.strip().lower()] = Port(
-                name.strip().lower(), mm.group(2).lower(), _width(mm.group(3))
+                name.strip().lower(), mm.group(2).lower(), _width(mm.group(3), values)
             )
     after_ports = body[body.index(port_clause) + len(port_clause) :]
     info: dict[str, list[str]] = {}
     parameter: dict[str, list[str]] = {}
+    piece = r"(?:\"[^\"]*\"|integer'image\s*\(\s*\w+\s*\))"
     pattern = re.compile(
         r"\battribute\s+(x_interface_info|x_interface_parameter)\s+of\s+(\w+)\s*:\s*signal\s+is"
-        r"\s+((?:\"[^\"]*\"\s*&?\s*)+);",
+        rf"\s+((?:{piece}\s*&?\s*)+);",
         re.IGNORECASE,
     )
     for kind, port, strings in pattern.findall(after_ports):
-        value = "".join(re.findall(r"\"([^\"]*)\"", strings))
+        value = ""
+        for literal, name in re.findall(r"\"([^\"]*)\"|integer'image\s*\(\s*(\w+)\s*\)", strings):
+            value += values.get(name, "?") if name else literal
         target = info if kind.lower() == "x_interface_info" else parameter
         target.setdefault(port.lower(), []).append(value)
     return Top(entity, generics, ports, info, parameter)
@@ -399,5 +419,7 @@ def problems(top: Top) -> list[str]:
     return issues
 
 
-def load(path: Path, entity: str = "fastnms_axi") -> Top:
-    return parse(path.read_text(), entity)
+def load(
+    path: Path, entity: str = "fastnms_axi", generics_override: dict[str, str] | None = None
+) -> Top:
+    return parse(path.read_text(), entity, generics_override)

@@ -143,11 +143,12 @@ architecture rtl of fastnms_window is
 
   -- Frame geometry, as the values the position counters compare against.
   type limits_t is record
-    w_last_m1 : x_t;          -- B - 2: the beat before the last
-    w_two     : std_logic;    -- B = 2: a row's first beat is its last but one
-    h_last_m1 : y_t;          -- H - 2: the row before the last
-    x_hi      : x_per_lane_t; -- per pixel of a beat, the last beat it is inside
-    y_hi      : y_t;          -- H - 1 - R: the last inside row
+    w_last_m1 : x_t;                                -- B - 2: the beat before the last
+    w_two     : std_logic;                          -- B = 2: a row's first beat is its last but one
+    hi_zero   : std_logic_vector(PPC - 1 downto 0); -- x_hi = 0, per pixel of a beat
+    h_last_m1 : y_t;                                -- H - 2: the row before the last
+    x_hi      : x_per_lane_t;                       -- per pixel of a beat, the last beat it is inside
+    y_hi      : y_t;                                -- H - 1 - R: the last inside row
   end record limits_t;
 
   -- Configuration, two register stages: the size, then its range checks
@@ -325,6 +326,9 @@ begin
       -- subtraction comes first, so the shift is wiring after the carry chain.
       cfg_limits.w_last_m1 <= resize(shift_right(cfg_w - 2 * PPC, PB), x_t'length);
       cfg_limits.w_two     <= to_sl(cfg_w = 2 * PPC);
+      for lane in 0 to PPC - 1 loop
+        cfg_limits.hi_zero(lane) <= to_sl(cfg_w = PPC * ((R + lane + PPC) / PPC));
+      end loop;
       cfg_limits.h_last_m1 <= resize(cfg_h - 2, y_t'length);
       cfg_limits.y_hi      <= resize(cfg_h - (R + 1), y_t'length);
       for lane in 0 to PPC - 1 loop
@@ -445,8 +449,9 @@ begin
 
         if emit = '1' then
           if out_state = idle then
-            out_state <= lockstep;
-            out_busy  <= '1';
+            out_state  <= lockstep;
+            out_busy   <= '1';
+            out_limits <= in_limits;
           end if;
           if out_x_last = '1' then
             out_x_last <= '0';
@@ -462,6 +467,14 @@ begin
               out_y_last <= '0';
               out_y_in   <= '0';
             end if;
+          elsif out_state = idle then
+            -- A frame's first beat: out_limits are still the previous
+            -- frame's (they load now), so beat 1's flags come from flags
+            -- of in_limits (only two-beat rows make them differ).
+            out_x_last <= in_limits.w_two;
+            for lane in 0 to PPC - 1 loop
+              out_x_in(lane) <= to_sl(first_inside_beat(lane) <= 1) and not in_limits.hi_zero(lane);
+            end loop;
           else
             out_x_last <= to_sl(beat_x = out_limits.w_last_m1);
             for lane in 0 to PPC - 1 loop
@@ -483,13 +496,6 @@ begin
           out_state <= flush;
           out_cut   <= restart;
         end if;
-      end if;
-
-      -- A frame's flags are taken from its limits from its first beat on:
-      -- they load while no frame is out and as the last border beat leaves
-      -- (when a next frame's first beat can be the very next).
-      if out_state = idle or (advance = '1' and emit = '1' and out_x_last = '1' and out_y_last = '1') then
-        out_limits <= in_limits;
       end if;
 
       if rst = '1' then

@@ -101,7 +101,7 @@ static void fake_init(struct fake *f, struct fastnms_regs_io *io)
     f->reg[FASTNMS_MAX_SIZE_OFFSET / 4u] = 480u << FASTNMS_MAX_SIZE_HEIGHT_SHIFT | 640u;
     f->reg[FASTNMS_BUILD_OFFSET / 4u] = FASTNMS_BUILD_SCORE_VIDEO_MASK | 512u;
     f->reg[FASTNMS_MODE_OFFSET / 4u] = FASTNMS_MODE_NMS_REGION4 << FASTNMS_MODE_NMS_SHIFT |
-                                       FASTNMS_MODE_SCORE_OPENCV;
+                                       FASTNMS_MODE_SCORE_OPENCV | 4u << FASTNMS_MODE_PPC_SHIFT;
     f->reset_reads = 3;
     io->read = fake_read;
     io->write = fake_write;
@@ -129,6 +129,7 @@ static void test_probe(void)
     CHECK(info.max_width == 640u && info.max_height == 480u);
     CHECK(info.fifo_depth == 512u && info.score_video);
     CHECK(info.score == FASTNMS_MODE_SCORE_OPENCV && info.nms == FASTNMS_MODE_NMS_REGION4);
+    CHECK(info.ppc == 4u);
     CHECK(f.writes == 0u);
     CHECK(fastnms_probe(&io, NULL) == FASTNMS_OK);
 
