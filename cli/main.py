@@ -285,7 +285,7 @@ def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
         choices=(1, 2, 4),
         default=1,
         help="pixels per clock of the simulated IP (its PPC generic): 1 (default), 2 or 4; "
-        "2 and 4 need --nms 3x3 and an image width that is a multiple of PPC",
+        "2 and 4 need --nms 3x3 or none and an image width that is a multiple of PPC",
     )
     p.add_argument(
         "--vblank",
@@ -472,9 +472,9 @@ def timing_of(args: argparse.Namespace) -> Timing:
 
 
 def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> SimResult:
-    if args.ppc != 1 and args.nms != "3x3":
+    if args.ppc != 1 and args.nms not in ("3x3", "none"):
         raise UsageError(
-            f"--ppc {args.ppc} needs --nms 3x3 (the other NMS take one pixel per clock)"
+            f"--ppc {args.ppc} needs --nms 3x3 or none (the region NMS takes one pixel per clock)"
         )
     for name, img in frames:
         why = check_size(img, args.ppc)

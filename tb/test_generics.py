@@ -49,7 +49,8 @@ MORE = [
     ("fastnms_nms_serializer", {"DEPTH": 2}, "DEPTH must be at least 4"),
     ("fastnms_core", {"PPC": 4, "NMS": "region4"}, 'NMS "region4" takes one pixel per clock'),
     ("fastnms_core", {"PPC": 3}, "PPC must be 1, 2 or 4"),
-    ("fastnms_axi", {"PPC": 2, "NMS": "none"}, 'only NMS "3x3" takes 2 or 4 pixels'),
+    ("fastnms_axi", {"PPC": 2, "NMS": "region8"}, 'only NMS "3x3" and "none" take 2 or 4'),
+    ("fastnms_nms_none", {"PPC": 4, "MAX_WIDTH": 30}, "PPC must be 1, 2 or 4, and MAX_WIDTH"),
     ("fastnms_axi", {"PPC": 4, "MAX_WIDTH": 1918}, "PPC must be 1, 2 or 4, and MAX_WIDTH"),
     ("fastnms_video_check", {"PPC": 3}, "PPC must be 1, 2 or 4"),
 ]

@@ -144,7 +144,7 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["--idle", "abc", "IMG"], "expected a rate"),
         (["--hblank", "-1", "IMG"], "expected an integer >= 0"),
         (["EMPTYDIR"], "a directory without image files"),
-        (["--ppc", "4", "--nms", "region4", "IMG"], "--ppc 4 needs --nms 3x3"),
+        (["--ppc", "4", "--nms", "region4", "IMG"], "--ppc 4 needs --nms 3x3 or none"),
         (["--ppc", "4", "IMG60"], "not a multiple of 4"),
     ],
 )

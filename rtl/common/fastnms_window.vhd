@@ -170,7 +170,7 @@ architecture rtl of fastnms_window is
   signal in_active : std_logic;
   signal in_x      : x_t;
   signal in_y      : y_t;
-  signal in_x_last : std_logic; -- in_x = W - 1
+  signal in_x_last : std_logic; -- in_x is the row's last beat, B - 1
   signal in_y_last : std_logic; -- in_y = H - 1
   signal at_start  : std_logic; -- (in_x, in_y) = (LB, R): the first window's beat
   -- min(in_x, LB) and min(in_y, R + 1): small counters that find (LB, R)

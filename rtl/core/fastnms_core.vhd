@@ -6,9 +6,10 @@
 -- "none": every corner).
 --
 -- PPC pixels per clock (1, 2 or 4; pixel 0 of a beat in the low byte of
--- in_data): the detector and the 3x3 NMS take a beat of PPC pixels every
--- clock; the region NMS and "none" take one pixel per clock (PPC = 1 only,
--- asserted).
+-- in_data): the detector and the NMS "3x3" and "none" take a beat of PPC
+-- pixels every clock (the output stays one record per clock: "3x3" never has
+-- more on average, "none" makes the input wait when it does); the region NMS
+-- takes one pixel per clock (PPC = 1 only, asserted).
 --
 -- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
 -- taken with the start-of-frame beat). Output: one record per corner
@@ -115,8 +116,8 @@ begin
   assert PPC = 1 or PPC = 2 or PPC = 4
     report "fastnms_core: PPC must be 1, 2 or 4"
     severity failure;
-  assert PPC = 1 or NMS = "3x3"
-    report "fastnms_core: NMS """ & NMS & """ takes one pixel per clock: PPC must be 1 (only ""3x3"" takes 2 or 4)"
+  assert PPC = 1 or NMS = "3x3" or NMS = "none"
+    report "fastnms_core: NMS """ & NMS & """ takes one pixel per clock: PPC must be 1 (""3x3"" and ""none"" take 2 or 4)"
     severity failure;
 
   detector : entity work.fastnms_fast_detector
@@ -231,15 +232,16 @@ begin
       generic map (
         MAX_WIDTH  => MAX_WIDTH,
         MAX_HEIGHT => MAX_HEIGHT,
-        SCORE_BITS => SCORE_BITS
+        SCORE_BITS => SCORE_BITS,
+        PPC        => PPC
       )
       port map (
         clk       => clk,
         rst       => rst,
         in_valid  => n_valid,
         in_ready  => n_ready,
-        in_corner => d_corner(0),
-        in_score  => d_score(SCORE_BITS - 1 downto 0),
+        in_corner => d_corner,
+        in_score  => d_score,
         in_eol    => d_eol,
         in_eof    => d_eof,
         out_valid => out_valid,

@@ -3,10 +3,17 @@
 -- end-of-frame beat (out_eof = '1', out_x/out_y the frame's last pixel,
 -- out_score 0), also for a frame without corners.
 --
--- Input: the detector's output stream, one beat per pixel with in_corner,
--- in_score, in_eol and in_eof (the position is counted from them; the
--- detector's stream is always well formed). One pixel per clock; the skid
--- buffer's registered ready is the advance enable.
+-- Input: the detector's output stream, one beat of PPC pixels with their
+-- corner flags (in_corner(i)) and scores (slice i of in_score), in_eol and
+-- in_eof (the position is counted from them; the detector's stream is always
+-- well formed). One beat per clock; the registered ready of the output stage
+-- is the advance enable.
+--
+-- With PPC = 1 the records leave through a skid buffer, one per clock, as
+-- fast as the pixels come. With PPC = 2 or 4 a beat can hold up to PPC
+-- corners and fastnms_nms_serializer hands them out one per clock from a FIFO
+-- of MAX_WIDTH / PPC beats: content with more than one corner per clock on
+-- average over a row (noise at low thresholds) makes the input wait.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -18,15 +25,16 @@ entity fastnms_nms_none is
   generic (
     MAX_WIDTH  : positive := 1920;
     MAX_HEIGHT : positive := 4095;
-    SCORE_BITS : positive := 8
+    SCORE_BITS : positive := 8;
+    PPC        : positive := 1
   );
   port (
     clk       : in    std_logic;
     rst       : in    std_logic;
     in_valid  : in    std_logic;
     in_ready  : out   std_logic;
-    in_corner : in    std_logic;
-    in_score  : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_corner : in    std_logic_vector(PPC - 1 downto 0);
+    in_score  : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
     in_eol    : in    std_logic;
     in_eof    : in    std_logic;
     out_valid : out   std_logic;
@@ -43,22 +51,23 @@ architecture rtl of fastnms_nms_none is
   signal advance : std_logic;
   signal accept  : std_logic;
 
-  -- Position of the next pixel: both counters clear through the flip-flops'
-  -- reset, so the frame's first pixel finds them at (0, 0).
+  -- Position of the next beat (x in beats): both counters clear through the
+  -- flip-flops' reset, so the frame's first beat finds them at (0, 0).
   signal x       : unsigned(out_x'range);
+  signal x_pixel : unsigned(out_x'range); -- the column of the beat's pixel 0
   signal y       : unsigned(out_y'range);
   signal x_clear : std_logic;
   signal y_clear : std_logic;
   signal y_step  : std_logic;
 
-  signal s1_valid : std_logic;
-  signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS downto 0);
-  signal s1_out   : std_logic_vector(s1_data'range);
 
 begin
 
   assert MAX_WIDTH >= 2 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
     report "fastnms_nms_none: MAX_WIDTH must be in 2 .. 65535 and MAX_HEIGHT below 65536"
+    severity failure;
+  assert (PPC = 1 or PPC = 2 or PPC = 4) and MAX_WIDTH mod PPC = 0
+    report "fastnms_nms_none: PPC must be 1, 2 or 4, and MAX_WIDTH a multiple of it"
     severity failure;
 
   accept   <= in_valid and advance;
@@ -85,39 +94,111 @@ begin
       y       => y
     );
 
-  records : process (clk) is
+  x_pixel <= shift_left(x, PPC / 2);
+
+  -- One pixel per beat: the corner and the end of frame straight out.
+  single_lane : if PPC = 1 generate
+
+    signal s1_valid : std_logic;
+    signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS downto 0);
+    signal s1_out   : std_logic_vector(s1_data'range);
+
   begin
 
-    if rising_edge(clk) then
-      if advance = '1' then
-        s1_valid <= in_valid and (in_corner or in_eof);
-        s1_data  <= in_eof & std_logic_vector(x) & std_logic_vector(y) & std_logic_vector(in_score);
+    records : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if advance = '1' then
+          s1_valid <= in_valid and (in_corner(0) or in_eof);
+          s1_data  <= in_eof & std_logic_vector(x) & std_logic_vector(y) & std_logic_vector(in_score);
+        end if;
+        if rst = '1' then
+          s1_valid <= '0';
+        end if;
       end if;
-      if rst = '1' then
-        s1_valid <= '0';
+
+    end process records;
+
+    output_buffer : entity work.fastnms_skid_buffer
+      generic map (
+        WIDTH => s1_data'length
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => s1_valid,
+        in_ready  => advance,
+        in_data   => s1_data,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_data  => s1_out
+      );
+
+    out_eof   <= s1_out(s1_out'high);
+    out_x     <= unsigned(s1_out(s1_out'high - 1 downto out_y'length + SCORE_BITS));
+    out_y     <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
+    out_score <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
+
+  end generate single_lane;
+
+  -- Several pixels per beat: the beat, registered, to the serializer.
+  several_lanes : if PPC > 1 generate
+
+    signal s1_valid  : std_logic;
+    signal s1_corner : std_logic_vector(PPC - 1 downto 0);
+    signal s1_scores : unsigned(PPC * SCORE_BITS - 1 downto 0);
+    signal s1_x      : unsigned(out_x'range);
+    signal s1_y      : unsigned(out_y'range);
+    signal s1_eof    : std_logic;
+
+  begin
+
+    beats : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if advance = '1' then
+          s1_valid  <= in_valid;
+          s1_corner <= in_corner;
+          s1_scores <= in_score;
+          s1_x      <= x_pixel;
+          s1_y      <= y;
+          s1_eof    <= in_eof;
+        end if;
+        if rst = '1' then
+          s1_valid <= '0';
+        end if;
       end if;
-    end if;
 
-  end process records;
+    end process beats;
 
-  output_buffer : entity work.fastnms_skid_buffer
-    generic map (
-      WIDTH => s1_data'length
-    )
-    port map (
-      clk       => clk,
-      rst       => rst,
-      in_valid  => s1_valid,
-      in_ready  => advance,
-      in_data   => s1_data,
-      out_valid => out_valid,
-      out_ready => out_ready,
-      out_data  => s1_out
-    );
+    serializer : entity work.fastnms_nms_serializer
+      generic map (
+        PPC        => PPC,
+        X_BITS     => out_x'length,
+        Y_BITS     => out_y'length,
+        SCORE_BITS => SCORE_BITS,
+        DEPTH      => MAX_WIDTH / PPC
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => s1_valid,
+        in_ready  => advance,
+        in_keep   => s1_corner,
+        in_scores => s1_scores,
+        in_x      => s1_x,
+        in_y      => s1_y,
+        in_eof    => s1_eof,
+        out_valid => out_valid,
+        out_ready => out_ready,
+        out_x     => out_x,
+        out_y     => out_y,
+        out_score => out_score,
+        out_eof   => out_eof
+      );
 
-  out_eof   <= s1_out(s1_out'high);
-  out_x     <= unsigned(s1_out(s1_out'high - 1 downto out_y'length + SCORE_BITS));
-  out_y     <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
-  out_score <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
+  end generate several_lanes;
 
 end architecture rtl;

@@ -12,7 +12,8 @@
 -- declarative part, where the LRM (and GHDL) want port attributes.
 --
 -- PPC pixels per clock (1, 2 or 4) on s_axis_video and m_axis_score, packed
--- as UG934 does (pixel 0 of a beat in the low byte); PPC > 1 needs NMS "3x3".
+-- as UG934 does (pixel 0 of a beat in the low byte); PPC > 1 needs NMS "3x3"
+-- or "none".
 --
 -- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
 -- registered twice more before it resets the control state, but every VALID
@@ -315,8 +316,8 @@ begin
   assert (PPC = 1 or PPC = 2 or PPC = 4) and MAX_WIDTH mod PPC = 0
     report "fastnms_axi: PPC must be 1, 2 or 4, and MAX_WIDTH a multiple of it"
     severity failure;
-  assert PPC = 1 or NMS = "3x3"
-    report "fastnms_axi: only NMS ""3x3"" takes 2 or 4 pixels per clock (PPC); the others need PPC 1"
+  assert PPC = 1 or NMS = "3x3" or NMS = "none"
+    report "fastnms_axi: only NMS ""3x3"" and ""none"" take 2 or 4 pixels per clock (PPC); the region NMS needs PPC 1"
     severity failure;
 
   -- ---- reset ---------------------------------------------------------------

@@ -59,16 +59,17 @@ def test_core_photos(request, score, nms, crops):
 
 
 @pytest.mark.parametrize("ppc", [2, 4])
-@pytest.mark.parametrize("score", ["opencv", "sad"])
-def test_core_ppc(request, score, ppc):
-    """Detector + 3x3 NMS with 2 and 4 pixels per beat: generated images,
-    malformed frames (widths that are not whole beats among them), and
-    photograph crops, against the golden model and cv2.FAST."""
+@pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "3x3"), ("sad", "none")])
+def test_core_ppc(request, score, nms, ppc):
+    """Detector + 3x3 NMS or none with 2 and 4 pixels per beat: generated
+    images (noise at threshold 0 among them), malformed frames (widths that
+    are not whole beats among them), and photograph crops, against the golden
+    model and cv2.FAST."""
     generics = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240, "READ_LATENCY": 2 if ppc == 2 else 1}
     run_cocotb(
         "fastnms_core",
         "core_tb",
-        {**generics, "SCORE": score, "NMS": "3x3", "PPC": ppc},
+        {**generics, "SCORE": score, "NMS": nms, "PPC": ppc},
         testcase="generated_images,malformed_then_good,real_images",
         name=request.node.nodeid,
         env={

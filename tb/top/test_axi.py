@@ -67,17 +67,27 @@ def test_axi_registers_random(request):
     )
 
 
-@pytest.mark.parametrize("ppc", [2, 4])
-@pytest.mark.parametrize("score", ["opencv", "sad"])
-def test_axi_ppc(request, score, ppc):
-    """2 and 4 pixels per clock (PPC) with the 3x3 NMS: the registers (MODE.PPC,
+PPC_CASES = [
+    ("opencv", "3x3", 2),
+    ("opencv", "3x3", 4),
+    ("sad", "3x3", 2),
+    ("sad", "3x3", 4),
+    ("opencv", "none", 4),
+]
+
+
+@pytest.mark.parametrize(
+    ("score", "nms", "ppc"), PPC_CASES, ids=[f"{s}-{n}-ppc{p}" for s, n, p in PPC_CASES]
+)
+def test_axi_ppc(request, score, nms, ppc):
+    """2 and 4 pixels per clock (PPC), 3x3 NMS and none: the registers (MODE.PPC,
     WIDTH rounded to whole beats), generated images back to back, the empty
     frame, the score video (PPC scores per beat), malformed lines counted in
     beats, with input idles and output stalls."""
     run_cocotb(
         "fastnms_axi",
         "axi_tb",
-        {**SMALL, "SCORE": score, "NMS": "3x3", "PPC": ppc},
+        {**SMALL, "SCORE": score, "NMS": nms, "PPC": ppc},
         testcase="registers,generated_frames,empty_frame,score_video,malformed_then_good",
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
