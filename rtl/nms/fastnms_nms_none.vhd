@@ -60,7 +60,6 @@ architecture rtl of fastnms_nms_none is
   signal y_clear : std_logic;
   signal y_step  : std_logic;
 
-
 begin
 
   assert MAX_WIDTH >= 2 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT < 2 ** 16
@@ -97,6 +96,7 @@ begin
   x_pixel <= shift_left(x, PPC / 2);
 
   -- One pixel per beat: the corner and the end of frame straight out.
+
   single_lane : if PPC = 1 generate
 
     signal s1_valid : std_logic;
@@ -143,6 +143,7 @@ begin
   end generate single_lane;
 
   -- Several pixels per beat: the beat, registered, to the serializer.
+
   several_lanes : if PPC > 1 generate
 
     signal s1_valid  : std_logic;
