@@ -427,6 +427,15 @@ def ppc_lines(summary: list[dict]) -> list[str]:
     out.append("")
     out += target_lines(ppc_targets(rows))
     out.append("")
+    for r in sorted(rows, key=lambda r: r["ppc"]):
+        cp = (r.get("ecp5") or {}).get("critical_path") or {}
+        if r["entity"] == "fastnms_axi" and cp:
+            out.append(
+                f"ECP5 critical path of `{r['config']}`: `{cp['from']}` to `{cp['to']}`, "
+                f"{cp['ns']:.2f} ns ({cp['logic_ns']:.2f} ns in cells, {cp['routing_ns']:.2f} ns "
+                "in routing)."
+            )
+            out.append("")
     return out
 
 
@@ -445,9 +454,9 @@ def ppc_targets(rows: list[dict]) -> list[dict]:
                 "id": "ppc-lut",
                 "target": f"LUT at PPC 4 at most {PPC_LUT_RATIO}x PPC 1",
                 "on": name,
-                "measured": f"{lut_total(four)} / {lut_total(one)} = {lut_ratio:.2f}x",
+                "measured": f"{lut_total(four)} / {lut_total(one)} = {lut_ratio:.3f}x",
                 "met": lut_ratio <= PPC_LUT_RATIO,
-                "margin": f"{PPC_LUT_RATIO - lut_ratio:+.2f}x",
+                "margin": f"{PPC_LUT_RATIO - lut_ratio:+.3f}x",
             }
         )
         bram_ratio = four["bram18_equiv"] / max(1, one["bram18_equiv"])
