@@ -1,6 +1,6 @@
 -- First-word-fall-through FIFO on one fastnms_ram_sdp, with registered
 -- readies on both sides: the project's one FIFO (the AXI top's corner FIFO,
--- the region NMS's event queue and free lists).
+-- the region NMS's record FIFO, the serializer's beat FIFO).
 --
 -- The RAM has WORDS = 2**clog2(DEPTH) words (DEPTH rounded up to a power of
 -- two, at least 4); three more words sit in the output stage (the RAM's read
