@@ -18,6 +18,17 @@ from tb.stream import StreamSink, StreamSource, value
 PERIOD_NS = 10
 
 
+def min_width(window: int, ppc: int = 1, read_latency: int = 1) -> int:
+    """The narrowest frame fastnms_window takes: `window` pixels, raised to
+    whole beats of `ppc` pixels and to at least read_latency + 1 beats."""
+    return -(-max(window, (read_latency + 1) * ppc) // ppc) * ppc
+
+
+def whole_beats(width: int, ppc: int, narrowest: int) -> int:
+    """A frame width rounded down to whole beats, at least `narrowest`."""
+    return max(narrowest, width // ppc * ppc)
+
+
 def frame_beats(
     img: np.ndarray, data: str = "data", ppc: int = 1, bits: int = 8
 ) -> list[dict[str, int]]:

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fastnms.sim.ghdl import ghdl_version
+from fastnms.sim.run import generics_for
 from fastnms.sim.sources import REPO
 
 from flows.report import report
@@ -112,14 +113,11 @@ def ppc_entries(score: str, nms: str) -> list[Entry]:
     `SCORE-NMS-3840-ppcN`; PPC stays out of the generics at 1)."""
     rows = []
     for ppc in PPCS:
-        generics: dict[str, object] = {
+        generics = {
+            **generics_for(score, nms, ppc),
             "MAX_WIDTH": PPC_WIDTH,
             "MAX_HEIGHT": PPC_HEIGHT,
-            "SCORE": score,
-            "NMS": nms,
         }
-        if ppc != 1:
-            generics["PPC"] = ppc
         base = f"{score}-{nms}-{PPC_WIDTH}-ppc{ppc}"
         rows.append(Entry(base, "fastnms_axi", score, nms, generics, ppc_table=True))
         rows.append(

@@ -10,7 +10,7 @@ import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
 
-from tb.video import PERIOD_NS, VideoTB, frame_beats, split_frames
+from tb.video import PERIOD_NS, VideoTB, frame_beats, min_width, split_frames
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -22,9 +22,7 @@ PPC = GENERICS.get("PPC", 1)
 R = WINDOW // 2
 LB = -(-R // PPC)  # the output's lag in beats behind the input, after R rows
 COLS = WINDOW - 1 + PPC  # columns of a beat's block of windows
-# The narrowest legal width: WINDOW pixels in whole beats, at least
-# READ_LATENCY + 1 beats.
-MIN_WIDTH = -(-max(WINDOW, (LATENCY + 1) * PPC) // PPC) * PPC
+MIN_WIDTH = min_width(WINDOW, PPC, LATENCY)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 

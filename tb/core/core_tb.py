@@ -16,7 +16,8 @@ from cocotb.triggers import ClockCycles
 from fastnms.golden.model import detect
 from fastnms.testing import images as testimages
 
-from tb.video import VideoTB, frame_beats, record_mismatch, split_records
+from tb.video import VideoTB, frame_beats, min_width, record_mismatch, split_records
+from tb.video import whole_beats as round_to_beats
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -24,13 +25,11 @@ SCORE = GENERICS["SCORE"]
 NMS = GENERICS["NMS"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
-# The narrowest frame: 7 pixels in whole beats, at least READ_LATENCY + 1.
-MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
+MIN_WIDTH = min_width(7, PPC, LATENCY)
 
 
 def whole_beats(width: int) -> int:
-    """A width rounded down to whole beats, at least MIN_WIDTH."""
-    return max(MIN_WIDTH, width // PPC * PPC)
+    return round_to_beats(width, PPC, MIN_WIDTH)
 
 
 IDLE = float(os.environ.get("TB_IDLE", "0"))

@@ -13,7 +13,7 @@ import numpy as np
 from fastnms.golden.fast import fast_maps
 from fastnms.testing import images as testimages
 
-from tb.video import PERIOD_NS, VideoTB, split_frames
+from tb.video import PERIOD_NS, VideoTB, min_width, split_frames, whole_beats
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
@@ -22,9 +22,7 @@ SCORE = GENERICS["SCORE"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
 SCORE_BITS = 12 if SCORE == "sad" else 8
-# The narrowest legal width (fastnms_window): 7 pixels in whole beats, at
-# least READ_LATENCY + 1 beats.
-MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
+MIN_WIDTH = min_width(7, PPC, LATENCY)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 THRESHOLDS = [0, 1, 10, 20, 50, 128, 254, 255]
@@ -102,7 +100,7 @@ def generated_frames(tb: TB) -> list[tuple[np.ndarray, int]]:
     rng = tb.np_rng
 
     def beats(width: int) -> int:
-        return max(MIN_WIDTH, width // PPC * PPC)
+        return whole_beats(width, PPC, MIN_WIDTH)
 
     sizes = [(MIN_WIDTH, 7), (beats(8), 8), (MAX_WIDTH, 9), (beats(9), 7), (MIN_WIDTH, 12)]
     sizes += [(beats(MAX_WIDTH - 1 | 1), 8)]

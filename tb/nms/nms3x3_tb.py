@@ -12,15 +12,15 @@ from cocotb.triggers import ClockCycles, RisingEdge
 from fastnms.golden.nms import nms_3x3
 
 from tb.stream import value
-from tb.video import VideoTB, record_mismatch, split_records
+from tb.video import VideoTB, min_width, record_mismatch, split_records, whole_beats
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
 SCORE_BITS = GENERICS["SCORE_BITS"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
-# The core's narrowest frame (7), in whole beats of at least READ_LATENCY + 1.
-MIN_WIDTH = -(-max(7, (LATENCY + 1) * PPC) // PPC) * PPC
+# The core's narrowest frame (7), as the window generator raises it.
+MIN_WIDTH = min_width(7, PPC, LATENCY)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 
@@ -71,7 +71,7 @@ async def random_maps(dut):
     rng = tb.np_rng
 
     def beats(width: int) -> int:
-        return max(MIN_WIDTH, width // PPC * PPC)
+        return whole_beats(width, PPC, MIN_WIDTH)
 
     sizes = [(MIN_WIDTH, 7), (MAX_WIDTH, 8), (beats(9), 12), (beats(8), 7)]
     sizes += [

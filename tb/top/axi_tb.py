@@ -29,6 +29,9 @@ from fastnms.sim.driver import AxiTop, Record, decode, pauses, record_words, vid
 from fastnms.sim.records import decode_records
 from fastnms.testing import images as testimages
 
+from tb.video import min_width
+from tb.video import whole_beats as round_to_beats
+
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH = GENERICS["MAX_WIDTH"]
 MAX_HEIGHT = GENERICS["MAX_HEIGHT"]
@@ -37,8 +40,9 @@ NMS = GENERICS["NMS"]
 SCORE_VIDEO = bool(GENERICS.get("SCORE_VIDEO", False))
 FIFO_DEPTH = GENERICS.get("CORNER_FIFO_DEPTH", 512)
 PPC = GENERICS.get("PPC", 1)
-# The narrowest frame the WIDTH register takes (fastnms_axi_regs).
-MIN_WIDTH = 7 if PPC == 1 else 8
+# The narrowest frame the WIDTH register takes (fastnms_axi_regs: the core's
+# window generators read their line buffers with latency 1).
+MIN_WIDTH = min_width(7, PPC)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 
@@ -52,8 +56,7 @@ def all_generics() -> dict[str, object]:
 
 
 def whole_beats(width: int) -> int:
-    """A frame width in whole beats of PPC pixels, at least MIN_WIDTH."""
-    return max(MIN_WIDTH, width // PPC * PPC)
+    return round_to_beats(width, PPC, MIN_WIDTH)
 
 
 def width_register(written: int) -> int:
