@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import statistics
 import sys
 from pathlib import Path
 
@@ -380,9 +381,23 @@ def ppc_lines(summary: list[dict]) -> list[str]:
         f"{UHD60_MPIXELS / 4:.1f} MHz at PPC 4."
     )
     out.append("")
+    seeds = next((sorted(r["ecp5_seed_fmax_mhz"]) for r in rows if r.get("ecp5_seed_fmax_mhz")), [])
+    if seeds:
+        out.append(
+            f"The tops are placed and routed with {len(seeds)} seeds "
+            f"({', '.join(map(str, seeds))}): Fmax is seed {seeds[0]}'s, as in the other "
+            "tables, then the lowest and highest of all seeds; the Fmax targets below "
+            "take the median (PPC 4 against PPC 1) and the lowest seed (3840x2160 at 60 "
+            "frames/s)."
+        )
+        out.append("")
     table_rows = []
     for r in sorted(rows, key=lambda r: (r["entity"] != "fastnms_axi", r["ppc"])):
         fmax = r.get("ecp5_fmax_mhz")
+        spread = r.get("ecp5_seed_fmax_mhz")
+        fmax_text = "—" if fmax is None else f"{fmax:.0f} MHz"
+        if fmax is not None and spread:
+            fmax_text += f" ({min(spread.values()):.0f}–{max(spread.values()):.0f})"
         table_rows.append(
             [
                 f"`{r['config']}`",
@@ -392,7 +407,7 @@ def ppc_lines(summary: list[dict]) -> list[str]:
                 num(r["ff"]),
                 str(r["bram18_equiv"]),
                 str(r["logic_levels"]),
-                "—" if fmax is None else f"{fmax:.0f} MHz",
+                fmax_text,
                 "—" if fmax is None else f"{r['ppc'] * fmax:.0f}",
             ]
         )
@@ -473,25 +488,33 @@ def ppc_targets(rows: list[dict]) -> list[dict]:
         )
         f1, f4 = one.get("ecp5_fmax_mhz"), four.get("ecp5_fmax_mhz")
         if f1 and f4:
+            # Over the placement seeds when there are several: the median for
+            # the ratio, the worst seed for the frame rate.
+            s1 = list((one.get("ecp5_seed_fmax_mhz") or {1: f1}).values())
+            s4 = list((four.get("ecp5_seed_fmax_mhz") or {1: f4}).values())
+            m1, m4 = statistics.median(s1), statistics.median(s4)
+            how = f"median of {len(s4)} seeds: " if len(s4) > 1 else ""
             out.append(
                 {
                     "id": "ppc-fmax",
                     "target": f"ECP5 Fmax at PPC 4 within {PPC_FMAX_DROP:.0%} of PPC 1",
                     "on": name,
-                    "measured": f"{f4:.0f} vs {f1:.0f} MHz ({f4 / f1 - 1:+.0%})",
-                    "met": f4 >= (1 - PPC_FMAX_DROP) * f1,
-                    "margin": f"{f4 - (1 - PPC_FMAX_DROP) * f1:+.0f} MHz",
+                    "measured": f"{how}{m4:.0f} vs {m1:.0f} MHz ({m4 / m1 - 1:+.0%})",
+                    "met": m4 >= (1 - PPC_FMAX_DROP) * m1,
+                    "margin": f"{m4 - (1 - PPC_FMAX_DROP) * m1:+.0f} MHz",
                 }
             )
             need = UHD60_MPIXELS / 4
+            worst = min(s4)
+            how = f"lowest of {len(s4)} seeds: " if len(s4) > 1 else ""
             out.append(
                 {
                     "id": "ppc-uhd60",
                     "target": f"3840x2160 at 60 frames/s: {need:.1f} MHz at PPC 4",
                     "on": f"`{four['config']}`",
-                    "measured": f"{f4:.0f} MHz (ECP5-8)",
-                    "met": f4 >= need,
-                    "margin": f"{f4 - need:+.1f} MHz ({f4 / need - 1:+.0%})",
+                    "measured": f"{how}{worst:.0f} MHz (ECP5-8)",
+                    "met": worst >= need,
+                    "margin": f"{worst - need:+.1f} MHz ({worst / need - 1:+.0%})",
                 }
             )
     return out

@@ -271,3 +271,40 @@ def test_ppc_table_and_targets():
     assert targets[("ppc-fmax", "`fastnms_axi` PPC 4 vs 1")]["met"]  # -6 %
     assert targets[("ppc-uhd60", "`opencv-3x3-3840-ppc4`")]["met"]  # 150 >= 124.4
     assert ("ppc-fmax", "`fastnms_core` PPC 4 vs 1") not in targets  # no place and route
+
+
+def test_ppc_fmax_targets_over_seeds():
+    """With several placement seeds, the table shows seed 1 and the spread,
+    the ratio target takes the medians and the frame-rate target the worst
+    seed: here seed 1 alone would meet both, the seeds do not."""
+
+    def top(ppc: int, seeds: dict[int, float]) -> dict:
+        base = f"opencv-3x3-3840-ppc{ppc}"
+        return {
+            "config": base,
+            "entity": "fastnms_axi",
+            "score": "opencv",
+            "nms": "3x3",
+            "generics": {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "PPC": ppc},
+            "ppc": ppc,
+            "ppc_table": True,
+            "lut": 1000 * ppc,
+            "ff": 1000,
+            "bram18_equiv": 10,
+            "logic_levels": 4,
+            "ecp5_fmax_mhz": seeds[1],
+            "ecp5_seed_fmax_mhz": seeds,
+        }
+
+    rows = [
+        top(1, {1: 150.0, 2: 160.0, 3: 160.0, 4: 160.0}),
+        top(4, {1: 150.0, 2: 120.0, 3: 130.0, 4: 140.0}),
+    ]
+    text = "\n".join(report.ppc_lines(rows))
+    assert "150 MHz (120–150)" in text, text
+    assert "4 seeds (1, 2, 3, 4)" in text, text
+    targets = {t["id"]: t for t in report.ppc_targets(rows)}
+    fmax = targets["ppc-fmax"]
+    assert not fmax["met"] and "median of 4 seeds: 135 vs 160 MHz" in fmax["measured"], fmax
+    uhd = targets["ppc-uhd60"]
+    assert not uhd["met"] and "lowest of 4 seeds: 120 MHz" in uhd["measured"], uhd

@@ -1,13 +1,24 @@
 -- Skid buffer: a two-entry pipeline register whose in_ready is a flip-flop,
 -- the one way the core cuts a ready path. Full throughput: one beat per clock
 -- while out_ready stays high; when out_ready drops, the beat already on its
--- way is parked in the skid register.
+-- way is parked in the second entry.
+--
+-- PING_PONG = false: out_data is a register (the main entry); out_ready
+-- enables the data registers, so it fans out to 2 x WIDTH flip-flops.
+-- PING_PONG = true: the two entries are written alternately and out_data is a
+-- 2:1 multiplexer. The entry the next beat goes to takes in_data on every
+-- clock while it is free, so the data registers are enabled by the write
+-- pointer and the full flag only: in_valid and out_ready drive four control
+-- flip-flops and nothing else. A handshake computed from the beat itself (the
+-- AXI top's video gate looks at the start-of-frame bit) then closes its loop
+-- through those few flip-flops, not through every data register.
 library ieee;
   use ieee.std_logic_1164.all;
 
 entity fastnms_skid_buffer is
   generic (
-    WIDTH : positive := 8
+    WIDTH     : positive := 8;
+    PING_PONG : boolean  := false
   );
   port (
     clk       : in    std_logic;
@@ -23,40 +34,107 @@ end entity fastnms_skid_buffer;
 
 architecture rtl of fastnms_skid_buffer is
 
-  signal main_valid : std_logic;
-  signal main_data  : std_logic_vector(WIDTH - 1 downto 0);
-  signal skid_valid : std_logic;
-  signal skid_data  : std_logic_vector(WIDTH - 1 downto 0);
+  subtype word_t is std_logic_vector(WIDTH - 1 downto 0);
+
+  type entries_t is array (0 to 1) of word_t;
 
 begin
 
-  registers : process (clk) is
+  main_and_skid : if not PING_PONG generate
+    signal main_valid : std_logic;
+    signal main_data  : word_t;
+    signal skid_valid : std_logic;
+    signal skid_data  : word_t;
   begin
 
-    if rising_edge(clk) then
-      if skid_valid = '0' then
-        if main_valid = '0' or out_ready = '1' then
-          main_valid <= in_valid;
-          main_data  <= in_data;
-        else
-          skid_valid <= in_valid;
-          skid_data  <= in_data;
+    registers : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if skid_valid = '0' then
+          if main_valid = '0' or out_ready = '1' then
+            main_valid <= in_valid;
+            main_data  <= in_data;
+          else
+            skid_valid <= in_valid;
+            skid_data  <= in_data;
+          end if;
+        elsif out_ready = '1' then
+          main_data  <= skid_data;
+          skid_valid <= '0';
         end if;
-      elsif out_ready = '1' then
-        main_data  <= skid_data;
-        skid_valid <= '0';
+
+        if rst = '1' then
+          main_valid <= '0';
+          skid_valid <= '0';
+        end if;
       end if;
 
-      if rst = '1' then
-        main_valid <= '0';
-        skid_valid <= '0';
+    end process registers;
+
+    in_ready  <= not skid_valid;
+    out_valid <= main_valid;
+    out_data  <= main_data;
+
+  end generate main_and_skid;
+
+  ping_pong_entries : if PING_PONG generate
+    signal entries   : entries_t;
+    signal write_sel : std_logic; -- the entry the next input beat goes to
+    signal read_sel  : std_logic; -- the entry out_data shows
+    signal empty     : std_logic;
+    signal full      : std_logic;
+    signal push      : std_logic;
+    signal pop       : std_logic;
+  begin
+
+    push <= in_valid and not full;
+    pop  <= out_ready and not empty;
+
+    registers : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        -- The free entry takes in_data on every clock, valid or not (it holds
+        -- no beat), so no handshake signal enables the data registers.
+        if full = '0' then
+          if write_sel = '0' then
+            entries(0) <= in_data;
+          else
+            entries(1) <= in_data;
+          end if;
+        end if;
+        if push = '1' then
+          write_sel <= not write_sel;
+        end if;
+        if pop = '1' then
+          read_sel <= not read_sel;
+        end if;
+        -- Two beats held: full; none: empty (a push and a pop together keep
+        -- the count).
+        if push = '1' and pop = '0' then
+          empty <= '0';
+          full  <= not empty;
+        elsif pop = '1' and push = '0' then
+          full  <= '0';
+          empty <= not full;
+        end if;
+
+        if rst = '1' then
+          write_sel <= '0';
+          read_sel  <= '0';
+          empty     <= '1';
+          full      <= '0';
+        end if;
       end if;
-    end if;
 
-  end process registers;
+    end process registers;
 
-  in_ready  <= not skid_valid;
-  out_valid <= main_valid;
-  out_data  <= main_data;
+    in_ready  <= not full;
+    out_valid <= not empty;
+    out_data  <= entries(0) when read_sel = '0' else
+                 entries(1);
+
+  end generate ping_pong_entries;
 
 end architecture rtl;

@@ -32,12 +32,13 @@
 --             WINDOW..MAX_HEIGHT.
 --
 -- Handshake: the whole pipeline advances exactly on the clocks with
--- out_ready = '1' (a beat transfers when out_valid is also high), so
--- in_ready depends on out_ready through one gate. Put a skid buffer behind
--- this block if its consumer's ready is not a register.
+-- out_ready = '1' (a beat transfers when out_valid is also high). Beats enter
+-- a two-entry input buffer whose in_ready is a register; it holds up to two
+-- beats while the pipeline waits. Put a skid buffer behind this block if its
+-- consumer's ready is not a register.
 --
--- Logic depth: every decision is taken from registers. Beats enter an input
--- register first; the counters reset through the flip-flops' synchronous
+-- Logic depth: every decision is taken from registers. Beats enter the input
+-- buffer first; the counters reset through the flip-flops' synchronous
 -- reset, so their next value is the bare carry chain; the comparisons behind
 -- the position flags are made one beat ahead.
 library ieee;
@@ -158,7 +159,12 @@ architecture rtl of fastnms_window is
   signal cfg_ok     : std_logic_vector(4 downto 0);
   signal cfg_limits : limits_t;
 
-  -- Input register; the configuration is sampled with a start of frame.
+  -- Input buffer (beats waiting for the input side); the configuration is
+  -- sampled with a start of frame.
+  signal in_word  : std_logic_vector(PPC * DATA_WIDTH + 2 downto 0);
+  signal in_taken : std_logic; -- the buffer's registered ready
+  signal a_word   : std_logic_vector(PPC * DATA_WIDTH + 2 downto 0);
+  signal a_ready  : std_logic;
   signal a_valid  : std_logic;
   signal a_data   : beat_t;
   signal a_sof    : std_logic;
@@ -259,8 +265,6 @@ begin
           take when out_state = lockstep else
           take and at_start;
 
-  in_ready <= advance and not hold;
-
   -- The counter controls are written out from the registers (restart, hold
   -- and counted expanded) so that each maps to two LUT levels.
   in_x_clear  <= rst or (advance and a_valid and
@@ -339,27 +343,47 @@ begin
 
   end process config;
 
-  input_register : process (clk) is
+  -- Input buffer: two entries, ping-pong, so that in_ready is a register and
+  -- the decision to take the buffered beat (advance, hold, from this block's
+  -- state) moves two pointers, not an enable of the PPC pixels.
+  in_word <= in_data & in_sof & in_eol & (in_sof and to_sl(cfg_ok = "11111"));
+  a_ready <= advance and not hold;
+
+  input_buffer : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH     => PPC * DATA_WIDTH + 3,
+      PING_PONG => true
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => in_valid,
+      in_ready  => in_taken,
+      in_data   => in_word,
+      out_valid => a_valid,
+      out_ready => a_ready,
+      out_data  => a_word
+    );
+
+  in_ready <= in_taken;
+  a_data   <= a_word(a_word'high downto 3);
+  a_sof    <= a_word(2);
+  a_eol    <= a_word(1);
+  a_start  <= a_word(0);
+
+  -- A frame's limits, sampled with its start of frame. Two starts of frame in
+  -- the buffer at once (a frame of one beat, malformed) give the first the
+  -- second's limits: that frame is cut at its next beat and never output.
+  input_limits : process (clk) is
   begin
 
     if rising_edge(clk) then
-      if advance = '1' and hold = '0' then
-        a_valid <= in_valid;
-        a_data  <= in_data;
-        a_sof   <= in_sof;
-        a_eol   <= in_eol;
-        a_start <= in_sof and to_sl(cfg_ok = "11111");
-        if in_sof = '1' then
-          a_limits <= cfg_limits;
-        end if;
-      end if;
-
-      if rst = '1' then
-        a_valid <= '0';
+      if in_valid = '1' and in_taken = '1' and in_sof = '1' then
+        a_limits <= cfg_limits;
       end if;
     end if;
 
-  end process input_register;
+  end process input_limits;
 
   input_side : process (clk) is
   begin

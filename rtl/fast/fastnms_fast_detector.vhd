@@ -22,7 +22,9 @@
 -- of PPC; see fastnms_window for the narrowest legal width) and
 -- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame beat and
 -- must be stable for the two clocks before it is accepted; cfg_threshold
--- (0..255) is sampled when the start-of-frame pixel is accepted. err_line and
+-- (0..255) is sampled when the start-of-frame pixel is accepted. As in
+-- AXI4-Stream, an offered beat stays (in_valid high, data stable) until it is
+-- taken. err_line and
 -- err_frame flag malformed input (see fastnms_window); the block never stalls
 -- on it and the next well-formed frame is exact.
 --
@@ -175,12 +177,16 @@ begin
 
   -- A frame's threshold is taken with its first pixel and applies from its
   -- first result on (the previous frame's results have all left the
-  -- comparisons by then).
+  -- comparisons by then). It is copied on every clock the first pixel is
+  -- offered, the last copy on the clock it is taken: the same value as a copy
+  -- at the handshake (an offered pixel and the configuration stay put until
+  -- it is taken), without ready, which depends on the window's state, in the
+  -- enable of these registers.
   thresholds : process (clk) is
   begin
 
     if rising_edge(clk) then
-      if in_valid = '1' and ready = '1' and in_sof = '1' then
+      if in_valid = '1' and in_sof = '1' then
         threshold_in <= cfg_threshold;
         width_in     <= cfg_width;
         height_in    <= cfg_height;

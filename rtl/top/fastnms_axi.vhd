@@ -459,9 +459,13 @@ begin
   v_tready            <= v_in_ready and ports_on;
   s_axis_video_tready <= v_tready;
 
+  -- Ping-pong: the gate decides from the buffered beat's start-of-frame bit,
+  -- and its ready must not enable the wide data registers (with 4 pixels per
+  -- clock that loop spread across the device and set the clock).
   input_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => PPC * 8 + 2
+      WIDTH     => PPC * 8 + 2,
+      PING_PONG => true
     )
     port map (
       clk       => aclk,

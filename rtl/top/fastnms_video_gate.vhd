@@ -108,9 +108,12 @@ begin
 
   skid_rst <= rst or soft;
 
+  -- Ping-pong: the core's ready comes from its window's state, and must not
+  -- enable the wide data registers.
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => DATA_WIDTH + 2
+      WIDTH     => DATA_WIDTH + 2,
+      PING_PONG => true
     )
     port map (
       clk       => clk,
