@@ -161,9 +161,9 @@ architecture rtl of fastnms_window is
 
   -- Input buffer (beats waiting for the input side); the configuration is
   -- sampled with a start of frame.
-  signal in_word  : std_logic_vector(PPC * DATA_WIDTH + 2 downto 0);
+  signal in_flags : std_logic_vector(2 downto 0);
   signal in_taken : std_logic; -- the buffer's registered ready
-  signal a_word   : std_logic_vector(PPC * DATA_WIDTH + 2 downto 0);
+  signal a_flags  : std_logic_vector(2 downto 0);
   signal a_ready  : std_logic;
   signal a_valid  : std_logic;
   signal a_data   : beat_t;
@@ -343,33 +343,51 @@ begin
 
   end process config;
 
-  -- Input buffer: two entries, ping-pong, so that in_ready is a register and
-  -- the decision to take the buffered beat (advance, hold, from this block's
-  -- state) moves two pointers, not an enable of the PPC pixels.
-  in_word <= in_data & in_sof & in_eol & (in_sof and to_sl(cfg_ok = "11111"));
-  a_ready <= advance and not hold;
+  -- Input buffer, two entries, so that in_ready is a register: the pixels in
+  -- the ping-pong style (the decision to take the waiting beat, from this
+  -- block's state, moves its pointers and enables none of the PPC pixels'
+  -- registers), the flags beside them in the main/skid style, whose outputs
+  -- are registers (the position logic decides from them). Both styles have
+  -- the same cycle behaviour, so the two buffers stay in step.
+  in_flags <= in_sof & in_eol & (in_sof and to_sl(cfg_ok = "11111"));
+  a_ready  <= advance and not hold;
 
-  input_buffer : entity work.fastnms_skid_buffer
+  input_pixels : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH     => PPC * DATA_WIDTH + 3,
+      WIDTH     => PPC * DATA_WIDTH,
       PING_PONG => true
     )
     port map (
       clk       => clk,
       rst       => rst,
       in_valid  => in_valid,
+      in_ready  => open,
+      in_data   => in_data,
+      out_valid => open,
+      out_ready => a_ready,
+      out_data  => a_data
+    );
+
+  input_flags : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH     => 3,
+      PING_PONG => false
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => in_valid,
       in_ready  => in_taken,
-      in_data   => in_word,
+      in_data   => in_flags,
       out_valid => a_valid,
       out_ready => a_ready,
-      out_data  => a_word
+      out_data  => a_flags
     );
 
   in_ready <= in_taken;
-  a_data   <= a_word(a_word'high downto 3);
-  a_sof    <= a_word(2);
-  a_eol    <= a_word(1);
-  a_start  <= a_word(0);
+  a_sof    <= a_flags(2);
+  a_eol    <= a_flags(1);
+  a_start  <= a_flags(0);
 
   -- A frame's limits, sampled with its start of frame. Two starts of frame in
   -- the buffer at once (a frame of one beat, malformed) give the first the
