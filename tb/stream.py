@@ -11,8 +11,10 @@ from __future__ import annotations
 import random
 from collections.abc import Iterable
 
+import cocotb
+from cocotb.clock import Clock
 from cocotb.handle import SimHandleBase
-from cocotb.triggers import RisingEdge
+from cocotb.triggers import ClockCycles, RisingEdge
 from cocotb.utils import get_sim_time
 
 
@@ -89,3 +91,27 @@ class StreamSink:
             if value(self.valid) and value(self.ready):
                 self.beats.append({f: resolve(s.value) for f, s in self.fields.items()})
                 self.times.append(sim_ns())
+
+
+class BufferTB:
+    """Base of the testbenches of a buffer with in_valid/in_ready/in_data and
+    out_valid/out_ready/out_data (FIFO, skid buffer): the seeded random
+    generator, the clock, idle inputs and the reset."""
+
+    def __init__(self, dut, generics: dict, period_ns: int = 10):
+        self.dut = dut
+        self.rng = random.Random(cocotb.RANDOM_SEED)
+        dut._log.info("seed=%d generics %s", cocotb.RANDOM_SEED, generics)
+        cocotb.start_soon(Clock(dut.clk, period_ns, unit="ns").start())
+        dut.in_valid.value = 0
+        dut.in_data.value = 0
+        dut.out_ready.value = 0
+
+    async def reset(self, clocks: int = 3) -> None:
+        """rst for `clocks` clocks with both sides idle, then one clock."""
+        self.dut.rst.value = 1
+        self.dut.in_valid.value = 0
+        self.dut.out_ready.value = 0
+        await ClockCycles(self.dut.clk, clocks)
+        self.dut.rst.value = 0
+        await RisingEdge(self.dut.clk)

@@ -6,13 +6,11 @@ from __future__ import annotations
 
 import ast
 import os
-import random
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge
 
-from tb.stream import value
+from tb.stream import BufferTB, value
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 DEPTH = GENERICS["DEPTH"]
@@ -29,23 +27,12 @@ STALLED_CAPACITY = WORDS + 3
 LATENCY = 4
 
 
-class TB:
+class TB(BufferTB):
     def __init__(self, dut):
-        self.dut = dut
-        self.rng = random.Random(cocotb.RANDOM_SEED)
-        dut._log.info("seed=%d generics %s", cocotb.RANDOM_SEED, GENERICS)
-        cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
-        dut.in_valid.value = 0
-        dut.in_data.value = 0
-        dut.out_ready.value = 0
+        super().__init__(dut, GENERICS, 10)
 
     async def reset(self) -> None:
-        self.dut.rst.value = 1
-        self.dut.in_valid.value = 0
-        self.dut.out_ready.value = 0
-        await ClockCycles(self.dut.clk, 3)
-        self.dut.rst.value = 0
-        await RisingEdge(self.dut.clk)
+        await super().reset(3)
 
     async def run(self, clocks: int, p_in, p_out) -> dict[str, int]:
         """`clocks` clocks of random traffic; p_in(k)/p_out(k) are the chances of

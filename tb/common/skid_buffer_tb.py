@@ -7,36 +7,23 @@ from __future__ import annotations
 
 import ast
 import os
-import random
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
 
-from tb.stream import value
+from tb.stream import BufferTB, value
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 WIDTH = GENERICS["WIDTH"]
 PERIOD_NS = 10
 
 
-class TB:
+class TB(BufferTB):
     def __init__(self, dut):
-        self.dut = dut
-        self.rng = random.Random(cocotb.RANDOM_SEED)
-        dut._log.info("seed=%d generics %s", cocotb.RANDOM_SEED, GENERICS)
-        cocotb.start_soon(Clock(dut.clk, PERIOD_NS, unit="ns").start())
-        dut.in_valid.value = 0
-        dut.in_data.value = 0
-        dut.out_ready.value = 0
+        super().__init__(dut, GENERICS, PERIOD_NS)
 
     async def reset(self) -> None:
-        self.dut.rst.value = 1
-        self.dut.in_valid.value = 0
-        self.dut.out_ready.value = 0
-        await ClockCycles(self.dut.clk, 2)
-        self.dut.rst.value = 0
-        await RisingEdge(self.dut.clk)
+        await super().reset(2)
 
     def outputs(self) -> tuple[int, int, int | None]:
         """in_ready, out_valid and (while valid: before the first beat the
