@@ -46,11 +46,7 @@ def levels_outside(netlist_json: Path, top: str, inside: str = "core.") -> int:
         for bit in net["bits"]:
             if isinstance(bit, int) and (bit not in names or len(name) < len(names[bit])):
                 names[bit] = name
-    drivers: dict[int, str] = {}
-    for name, cell in cells.items():
-        for port, bits in cell["connections"].items():
-            if cell["port_directions"].get(port) == "output":
-                drivers.update((b, name) for b in bits if isinstance(b, int))
+    drivers = synth.cell_drivers(module)
     logic = {n for n, c in cells.items() if synth.LOGIC_CELLS.match(c["type"])}
 
     def bits(cell: dict, direction: str) -> list[int]:

@@ -43,17 +43,22 @@ def ghdl_synth(
 LOGIC_CELLS = re.compile(r"^(LUT[1-6]|CARRY4|MUXF[78]|INV)$")
 
 
+def cell_drivers(module: dict) -> dict[int, str]:
+    """Net bit -> name of the cell that drives it, in a module of a yosys JSON
+    netlist."""
+    drivers: dict[int, str] = {}
+    for name, cell in module["cells"].items():
+        for port, bits in cell["connections"].items():
+            if cell["port_directions"].get(port) == "output":
+                drivers.update((b, name) for b in bits if isinstance(b, int))
+    return drivers
+
+
 def logic_levels(netlist_json: Path, top: str) -> int:
     """The most LUT/CARRY4/MUXF/INV cells on any path between registers,
     memories or ports of the mapped design (INV counted, conservatively)."""
     module = json.loads(netlist_json.read_text())["modules"][top]
-    drivers: dict[int, tuple[str, dict]] = {}
-    for name, cell in module["cells"].items():
-        for port, bits in cell["connections"].items():
-            if cell["port_directions"].get(port) == "output":
-                for bit in bits:
-                    if isinstance(bit, int):
-                        drivers[bit] = (name, cell)
+    drivers = {b: (n, module["cells"][n]) for b, n in cell_drivers(module).items()}
     depth: dict[str, int] = {}
 
     def cell_depth(name: str, cell: dict) -> int:
@@ -91,14 +96,8 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
                 old = names.get(bit)
                 if old is None or (old.startswith("$") and not name.startswith("$")):
                     names[bit] = name
-    drivers: dict[int, str] = {}
+    drivers = cell_drivers(module)
     cells = module["cells"]
-    for name, cell in cells.items():
-        for port, bits in cell["connections"].items():
-            if cell["port_directions"].get(port) == "output":
-                for bit in bits:
-                    if isinstance(bit, int):
-                        drivers[bit] = name
     best: dict[str, tuple[int, str | None, int]] = {}
 
     def visit(name: str) -> tuple[int, str | None, int]:
@@ -166,6 +165,43 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
                 break
         paths.append(path)
     return paths
+
+
+def flip_flops_reading(netlist_json: Path, top: str, port: str) -> int:
+    """How many flip-flops of the mapped design have input `port` in the logic
+    cone of one of their inputs (D, CE, R, S), through its input buffer."""
+    module = json.loads(netlist_json.read_text())["modules"][top]
+    cells = module["cells"]
+    port_bits = set(module["ports"][port]["bits"])
+    drivers = cell_drivers(module)
+    reached: dict[int, bool] = {}
+
+    def reads_port(bit) -> bool:
+        if bit in port_bits:
+            return True
+        if bit not in reached:
+            reached[bit] = False
+            cell = cells.get(drivers.get(bit, ""))
+            if cell is not None and (LOGIC_CELLS.match(cell["type"]) or cell["type"] == "IBUF"):
+                reached[bit] = any(
+                    reads_port(b)
+                    for pin, bits in cell["connections"].items()
+                    if cell["port_directions"].get(pin) == "input"
+                    for b in bits
+                )
+        return reached[bit]
+
+    return sum(
+        1
+        for cell in cells.values()
+        if cell["type"].startswith("FD")
+        and any(
+            reads_port(b)
+            for pin, bits in cell["connections"].items()
+            if cell["port_directions"].get(pin) == "input" and pin != "C"
+            for b in bits
+        )
+    )
 
 
 def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:

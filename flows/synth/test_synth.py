@@ -2,18 +2,14 @@
 without latches and with at most 4 logic levels between registers (yosys
 synth_xilinx), and the memories land in block RAM."""
 
-import json
-import re
-
 import pytest
 
 from flows.synth.axi_top import levels_outside, synthesizable_top
-from flows.synth.synth import entities, ghdl_synth, summary, yosys_xc7
+from flows.synth.synth import entities, flip_flops_reading, ghdl_synth, summary, yosys_xc7
 
 LATCHES = ("LDCE", "LDPE")
 # The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
 MAX_LOGIC_LEVELS = 4
-LOGIC = re.compile(r"^(LUT[1-6]|CARRY4|MUXF[78]|INV)$")
 # Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
 # does a whole column of its connected-components step in one clock (stack top,
 # current class, a three-way key comparison), which yosys maps into 15-17 levels
@@ -130,48 +126,6 @@ def test_core_region_1920(score, nms):
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
 
 
-def _flip_flops_reading(netlist_json, top: str, port: str) -> int:
-    """How many flip-flops of the mapped design have `port` in the logic cone
-    of one of their inputs (D, CE, R, S), through its input buffer."""
-    module = json.loads(netlist_json.read_text())["modules"][top]
-    port_bits = set(module["ports"][port]["bits"])
-    drivers = {}
-    for cell in module["cells"].values():
-        for pin, bits in cell["connections"].items():
-            if cell["port_directions"].get(pin) == "output":
-                for bit in bits:
-                    drivers[bit] = cell
-    reached: dict[int, bool] = {}
-
-    def reads_port(bit) -> bool:
-        if bit in port_bits:
-            return True
-        if bit in reached:
-            return reached[bit]
-        reached[bit] = False
-        cell = drivers.get(bit)
-        if cell is not None and (LOGIC.match(cell["type"]) or cell["type"] == "IBUF"):
-            reached[bit] = any(
-                reads_port(b)
-                for pin, bits in cell["connections"].items()
-                if cell["port_directions"].get(pin) == "input"
-                for b in bits
-            )
-        return reached[bit]
-
-    return sum(
-        1
-        for cell in module["cells"].values()
-        if cell["type"].startswith("FD")
-        and any(
-            reads_port(b)
-            for pin, bits in cell["connections"].items()
-            if cell["port_directions"].get(pin) == "input" and pin != "C"
-            for b in bits
-        )
-    )
-
-
 @pytest.mark.parametrize("ping_pong", [False, True])
 def test_skid_buffer_handshake_fanout(ping_pong):
     """The ping-pong style's in_valid and out_ready reach its four control
@@ -182,7 +136,7 @@ def test_skid_buffer_handshake_fanout(ping_pong):
     cells = yosys_xc7(netlist, "fastnms_skid_buffer")
     mapped = netlist.with_suffix(".xc7.json")
     readers = {
-        p: _flip_flops_reading(mapped, "fastnms_skid_buffer", p) for p in ("in_valid", "out_ready")
+        p: flip_flops_reading(mapped, "fastnms_skid_buffer", p) for p in ("in_valid", "out_ready")
     }
     print(ping_pong, summary(cells), "flip-flops reading:", readers)
     assert cells["logic_levels"] <= 2, cells
