@@ -16,8 +16,10 @@ MAX_LOGIC_LEVELS = 4
 # (docs/fastnms_nms_region.md, *Limits*; pipelining its key merges is open).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
-    # abc chains the window generators' counter controls (register -> 4
-    # LUTs -> the counters' reset/enable) differently (docs/fastnms_core.md).
+    # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
+    # a LUT6 through I0 642 ps, a block RAM's clock-to-out 2454 ps), so a path
+    # from a flip-flop has slack that its area recovery spends on chains of
+    # small LUTs, wherever sharing saves a LUT (docs/fastnms_core.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
     # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
     # deeper beside the output stage: abc chains the FIFO's level flags.
@@ -106,6 +108,21 @@ def test_axi_top_1920():
     assert bram18_equivalents(cells) == 9, cells
     assert outside <= MAX_LOGIC_LEVELS, f"{outside} logic levels outside fastnms_core"
     assert cells["logic_levels"] <= MAX_LOGIC_LEVELS + 1, cells
+
+
+@pytest.mark.parametrize("window", [3, 7])
+@pytest.mark.parametrize("ppc", [2, 4])
+def test_window_3840_every_ppc(ppc, window):
+    """The window generator of the detector (7x7) and of the 3x3 NMS at MAX_WIDTH
+    3840 with 2 and 4 pixels per clock: at most 4 logic levels on its own (its
+    decisions each read a few registers), the lines in block RAM."""
+    generics = {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "WINDOW": window, "PPC": ppc}
+    netlist, _ = ghdl_synth("fastnms_window", generics)
+    cells = yosys_xc7(netlist, "fastnms_window")
+    print(generics, summary(cells))
+    assert cells["logic_levels"] <= MAX_LOGIC_LEVELS, cells
+    assert bram18_equivalents(cells) * 18 * 1024 >= 3840 * 8 * (window - 1), cells
+    assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
 
 
 @pytest.mark.parametrize(("score", "nms"), [("sad", "region4"), ("opencv", "region8")])

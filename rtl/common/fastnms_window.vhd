@@ -152,8 +152,8 @@ architecture rtl of fastnms_window is
     y_hi      : y_t;                                -- H - 1 - R: the last inside row
   end record limits_t;
 
-  -- Configuration, two register stages: the size, then its range checks
-  -- (each separately, to keep the logic shallow) and the limits.
+  -- Configuration: the range checks (each separately, to keep the logic
+  -- shallow) one clock after the ports, the limits two (from a copy).
   signal cfg_w      : unsigned(cfg_width'range);
   signal cfg_h      : unsigned(cfg_height'range);
   signal cfg_ok     : std_logic_vector(4 downto 0);
@@ -178,12 +178,23 @@ architecture rtl of fastnms_window is
   signal in_y      : y_t;
   signal in_x_last : std_logic; -- in_x is the row's last beat, B - 1
   signal in_y_last : std_logic; -- in_y = H - 1
+  signal in_last   : std_logic; -- in_x_last and in_y_last: the frame's last beat
   signal at_start  : std_logic; -- (in_x, in_y) = (LB, R): the first window's beat
+  -- at_start and out_busy: the first window's beat waits for the previous
+  -- frame's border beats. Kept as a register of its own (its next value
+  -- predicted from the same updates) so that the decisions below take few
+  -- inputs.
+  signal blocked : std_logic;
   -- min(in_x, LB) and min(in_y, R + 1): small counters that find (LB, R)
   -- without comparing the wide ones.
   signal near_x    : unsigned(bits_for(LB + 1) - 1 downto 0);
   signal near_y    : unsigned(bits_for(R + 1) - 1 downto 0);
+  signal pre_start : std_logic; -- (near_x, near_y) = (LB - 1, R): the next beat is at_start
   signal in_limits : limits_t;
+
+  -- synthesis translate_off
+  signal checks_on : boolean; -- false until the first reset: the invariants hold from then on
+  -- synthesis translate_on
 
   -- Output side: position (beat_x, beat_y) of the next beat of the frame
   -- being emitted.
@@ -193,17 +204,19 @@ architecture rtl of fastnms_window is
   signal beat_y     : y_t;
   signal out_x_last : std_logic;
   signal out_y_last : std_logic;
+  signal out_last   : std_logic;                          -- out_x_last and out_y_last (only in the flush)
   signal out_x_in   : std_logic_vector(PPC - 1 downto 0); -- per pixel: R <= x <= W - 1 - R
   signal out_y_in   : std_logic;                          -- R <= beat_y <= H - 1 - R
   signal out_cut    : std_logic;                          -- the flush of a cut frame
   signal out_limits : limits_t;
 
-  signal advance : std_logic;
-  signal restart : std_logic;
-  signal hold    : std_logic;
-  signal take    : std_logic;
-  signal counted : std_logic;
-  signal emit    : std_logic;
+  signal advance   : std_logic;
+  signal flush_end : std_logic; -- the flush's last beat leaves
+  signal restart   : std_logic;
+  signal hold      : std_logic;
+  signal take      : std_logic;
+  signal counted   : std_logic;
+  signal emit      : std_logic;
   -- Counter controls: a clear beats a step, so that both map onto the
   -- flip-flops' reset and enable pins and the next value is the carry chain.
   -- The four counters are written here rather than as fastnms_position
@@ -251,39 +264,38 @@ begin
   -- advance enable (no bubble is squeezed out while it is low).
   advance <= out_ready;
 
+  -- The decisions, each from a few registers. The states of the two sides
+  -- imply one another (checked in simulation, in input_side), which keeps their inputs
+  -- few: at_start implies in_active; in lockstep the input is inside the frame
+  -- past its first window's beat (in_active = '1', blocked = '0'); when idle
+  -- the output is not busy (blocked = '0').
+  --
   -- A start of frame inside a frame first resets the input side (one clock).
   restart <= a_valid and a_sof and in_active;
   -- The pixel that starts a frame's output waits until the previous frame's
   -- last border beats have left.
-  hold <= restart or (a_valid and not a_sof and at_start and out_busy);
+  hold <= a_valid and ((a_sof and in_active) or (not a_sof and blocked));
   take <= a_valid and not hold;
   -- A taken pixel that belongs to a frame (in_active, or a start of frame
   -- with a valid size) and so moves the input position.
-  counted <= take and (in_active or a_start);
-  -- An output beat: every clock while flushing, with each pixel in lockstep.
-  emit <= '1' when out_state = flush else
-          take when out_state = lockstep else
-          take and at_start;
+  counted <= a_valid and ((a_start and not in_active) or (not a_sof and in_active and not blocked));
+  -- An output beat: every clock while flushing, with each pixel in lockstep
+  -- (take, which is a_valid and not a_sof there), and with the first window's
+  -- pixel when idle (take and at_start, the same there).
+  -- The frame's last output beat is always a border beat of the flush.
+  flush_end <= out_last;
+  emit      <= '1' when out_state = flush else
+               a_valid and not a_sof when out_state = lockstep else
+               a_valid and not a_sof and at_start;
 
-  -- The counter controls are written out from the registers (restart, hold
-  -- and counted expanded) so that each maps to two LUT levels.
-  in_x_clear  <= rst or (advance and a_valid and
-                         ((a_sof and in_active) or
-                           (in_x_last and not a_sof and (in_active or a_start) and
-                             not (at_start and out_busy)) or
-                           (in_x_last and a_sof and not in_active and a_start)));
-  in_x_step   <= advance and a_valid and
-                 ((not a_sof and (in_active or a_start) and not (at_start and out_busy)) or
-                  (a_sof and not in_active and a_start));
-  in_y_clear  <= rst or (advance and a_valid and
-                         ((a_sof and in_active) or
-                           (in_x_last and in_y_last and not a_sof and (in_active or a_start) and
-                             not (at_start and out_busy)) or
-                           (in_x_last and in_y_last and a_sof and not in_active and a_start)));
-  in_y_step   <= in_x_step and in_x_last;
+  -- Counter controls (a clear beats a step: the flip-flops' reset and enable).
+  in_x_clear  <= rst or (advance and (restart or (counted and in_x_last)));
+  in_x_step   <= advance and counted;
+  in_y_clear  <= rst or (advance and (restart or (counted and in_last)));
+  in_y_step   <= advance and counted and in_x_last;
   out_x_clear <= rst or (advance and emit and out_x_last);
   out_x_step  <= advance and emit;
-  out_y_clear <= rst or (advance and emit and out_x_last and out_y_last);
+  out_y_clear <= rst or (advance and flush_end);
   out_y_step  <= advance and emit and out_x_last;
 
   counters : process (clk) is
@@ -318,13 +330,16 @@ begin
   begin
 
     if rising_edge(clk) then
-      cfg_w     <= cfg_width;
-      cfg_h     <= cfg_height;
-      cfg_ok(0) <= at_least(cfg_w, MIN_WIDTH);
-      cfg_ok(1) <= not at_least(cfg_w, MAX_WIDTH + 1);
-      cfg_ok(2) <= at_least(cfg_h, WINDOW);
-      cfg_ok(3) <= not at_least(cfg_h, MAX_HEIGHT + 1);
-      cfg_ok(4) <= to_sl((cfg_w and to_unsigned(PPC - 1, cfg_w'length)) = 0);
+      cfg_w <= cfg_width;
+      cfg_h <= cfg_height;
+      -- The range checks read the ports, not cfg_w: yosys's abc9 otherwise
+      -- finds cfg_w >= MIN_WIDTH in the carry out of cfg_w - 2 PPC below and
+      -- takes the whole carry chain into the path.
+      cfg_ok(0) <= at_least(cfg_width, MIN_WIDTH);
+      cfg_ok(1) <= not at_least(cfg_width, MAX_WIDTH + 1);
+      cfg_ok(2) <= at_least(cfg_height, WINDOW);
+      cfg_ok(3) <= not at_least(cfg_height, MAX_HEIGHT + 1);
+      cfg_ok(4) <= to_sl((cfg_width and to_unsigned(PPC - 1, cfg_width'length)) = 0);
 
       -- In beats: B = W / PPC (the low bits are checked to be 0); the
       -- subtraction comes first, so the shift is wiring after the carry chain.
@@ -416,7 +431,9 @@ begin
           in_active <= '0';
           in_x_last <= '0';
           in_y_last <= '0';
+          in_last   <= '0';
           at_start  <= '0';
+          pre_start <= '0';
           near_x    <= (others => '0');
           near_y    <= (others => '0');
         elsif take = '1' and counted = '0' then
@@ -429,11 +446,15 @@ begin
             in_limits <= a_limits;
           end if;
           err_line <= in_x_last xor a_eol;
-          at_start <= to_sl(near_x = LB - 1 and near_y = R);
+          at_start <= pre_start;
           if in_x_last = '1' then
             in_x_last <= '0';
+            in_last   <= '0';
             near_x    <= (others => '0');
             in_y_last <= to_sl(in_y = in_limits.h_last_m1);
+            -- The next beat is at x = 0 of row near_y + 1 (of row 0 after
+            -- the last row, where pre_start is never set: R >= 1).
+            pre_start <= to_sl(LB = 1 and to_integer(near_y) = R - 1) and not in_y_last;
             if near_y /= R + 1 then
               near_y <= near_y + 1;
             end if;
@@ -443,21 +464,66 @@ begin
               near_y    <= (others => '0');
             end if;
           else
-            -- At a start of frame in_limits are the previous frame's.
+            -- The next beat is at min(near_x + 1, LB) of the same row.
+            pre_start <= to_sl(to_integer(near_x) = LB - 2 and near_y = R);
+            -- At a start of frame in_limits are the previous frame's (and
+            -- the first row is never the last: H >= WINDOW).
             in_x_last <= (to_sl(in_x = in_limits.w_last_m1) and not a_sof) or
                          (a_sof and a_limits.w_two);
+            in_last   <= to_sl(in_x = in_limits.w_last_m1) and not a_sof and in_y_last;
             if near_x /= LB then
               near_x <= near_x + 1;
             end if;
           end if;
         end if;
+
+        -- at_start and out_busy, one clock ahead: a restart clears at_start;
+        -- a counted beat sets it on the beat before the first window's
+        -- (whose own beat sets out_busy, and clears at_start); the end of a
+        -- flush clears out_busy.
+        if restart = '1' then
+          blocked <= '0';
+        elsif counted = '1' then
+          blocked <= pre_start and out_busy and not flush_end;
+        else
+          blocked <= blocked and not flush_end;
+        end if;
       end if;
+
+      -- synthesis translate_off
+      -- The invariants the decisions rely on.
+      if rst = '1' then
+        checks_on <= true;
+      end if;
+      assert not checks_on or rst = '1' or blocked = (at_start and out_busy)
+        report "fastnms_window: blocked is not at_start and out_busy"
+        severity failure;
+      assert not checks_on or rst = '1' or in_last = (in_x_last and in_y_last)
+        report "fastnms_window: in_last is not in_x_last and in_y_last"
+        severity failure;
+      assert not checks_on or rst = '1' or at_start = '0' or in_active = '1'
+        report "fastnms_window: at_start outside a frame"
+        severity failure;
+      assert not checks_on or rst = '1' or out_state /= lockstep or (in_active = '1' and at_start = '0')
+        report "fastnms_window: lockstep outside the input's frame"
+        severity failure;
+      assert not checks_on or rst = '1' or
+             (out_last = (out_x_last and out_y_last) and (out_last = '0' or out_state = flush))
+        report "fastnms_window: out_last is not out_x_last and out_y_last in the flush"
+        severity failure;
+      assert not checks_on or rst = '1' or (out_state = idle) = (out_busy = '0')
+        report "fastnms_window: out_busy is not out_state /= idle"
+        severity failure;
+      -- synthesis translate_on
 
       if rst = '1' then
         in_active <= '0';
         in_x_last <= '0';
         in_y_last <= '0';
+        in_last   <= '0';
         at_start  <= '0';
+        blocked   <= '0';
+        pre_start <= '0';
         near_x    <= (others => '0');
         near_y    <= (others => '0');
         err_line  <= '0';
@@ -476,7 +542,7 @@ begin
         tokens(1).border <= to_sl(out_state = flush);
         tokens(1).sof    <= to_sl(out_state = idle);
         tokens(1).eol    <= out_x_last;
-        tokens(1).eof    <= out_x_last and out_y_last;
+        tokens(1).eof    <= out_last;
         tokens(1).x      <= beat_x;
         tokens(1).y      <= beat_y;
         -- The first LB beats of a flush end the last inside row: with
@@ -497,6 +563,7 @@ begin
           end if;
           if out_x_last = '1' then
             out_x_last <= '0';
+            out_last   <= '0';
             for lane in 0 to PPC - 1 loop
               out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
             end loop;
@@ -519,6 +586,7 @@ begin
             end loop;
           else
             out_x_last <= to_sl(beat_x = out_limits.w_last_m1);
+            out_last   <= to_sl(beat_x = out_limits.w_last_m1) and out_y_last;
             for lane in 0 to PPC - 1 loop
               -- Inside from its first inside beat to x_hi (never, when
               -- x_hi is the beat before the first).
@@ -532,11 +600,11 @@ begin
           end if;
         end if;
 
-        -- The frame's last beat, or a cut, ends the lockstep part.
-        if out_state = lockstep and
-           (restart = '1' or (counted = '1' and in_x_last = '1' and in_y_last = '1')) then
+        -- The frame's last beat, or a cut (a start of frame), ends the
+        -- lockstep part (in lockstep the input is inside its frame).
+        if out_state = lockstep and a_valid = '1' and (a_sof = '1' or in_last = '1') then
           out_state <= flush;
-          out_cut   <= restart;
+          out_cut   <= a_sof;
         end if;
       end if;
 
@@ -546,6 +614,7 @@ begin
         out_cut    <= '0';
         out_x_last <= '0';
         out_y_last <= '0';
+        out_last   <= '0';
         for lane in 0 to PPC - 1 loop
           out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
         end loop;
