@@ -264,7 +264,8 @@ if __name__ == "__main__":
     cells = yosys_xc7(path, name)
     if "--paths" in args:
         for p in deepest_paths(path.with_suffix(".xc7.json"), name):
-            print(f"{len(p) - 1} levels:")
+            levels = sum(1 for step in p if LOGIC_CELLS.match(step.split()[0]))
+            print(f"{levels} levels:")
             for step in p:
                 print("   ", step)
     if "--cells" in args:

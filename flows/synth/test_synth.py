@@ -13,7 +13,7 @@ MAX_LOGIC_LEVELS = 4
 # Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
 # does a whole column of its connected-components step in one clock (stack top,
 # current class, a three-way key comparison), which yosys maps into 15-17 levels
-# (docs/fastnms_nms_region.md, *Limits*; pipelining its key merges is open).
+# (docs/fastnms_nms_region.md, *Limits*: its control alone maps into 12).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
