@@ -111,10 +111,10 @@ def test_axi_top_1920():
 
 
 @pytest.mark.parametrize("window", [3, 7])
-@pytest.mark.parametrize("ppc", [2, 4])
+@pytest.mark.parametrize("ppc", [1, 2, 4])
 def test_window_3840_every_ppc(ppc, window):
     """The window generator of the detector (7x7) and of the 3x3 NMS at MAX_WIDTH
-    3840 with 2 and 4 pixels per clock: at most 4 logic levels on its own (its
+    3840 with 1, 2 and 4 pixels per clock: at most 4 logic levels on its own (its
     decisions each read a few registers), the lines in block RAM."""
     generics = {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "WINDOW": window, "PPC": ppc}
     netlist, _ = ghdl_synth("fastnms_window", generics)
