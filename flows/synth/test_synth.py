@@ -17,9 +17,9 @@ MAX_LOGIC_LEVELS = 4
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
-    # a LUT6 through I0 642 ps, a block RAM's clock-to-out 2454 ps), so a path
-    # from a flip-flop has slack that its area recovery spends on chains of
-    # small LUTs, wherever sharing saves a LUT (docs/fastnms_core.md).
+    # a LUT6 through I0 642 ps, a block RAM's clock-to-out 2454 ps), in which
+    # chains of small LUTs look fast and paths from flip-flops have slack, so
+    # it builds such chains wherever sharing saves a LUT (docs/fastnms_core.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
     # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
     # deeper beside the output stage: abc chains the FIFO's level flags.

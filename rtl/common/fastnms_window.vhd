@@ -210,13 +210,12 @@ architecture rtl of fastnms_window is
   signal out_cut    : std_logic;                          -- the flush of a cut frame
   signal out_limits : limits_t;
 
-  signal advance   : std_logic;
-  signal flush_end : std_logic; -- the flush's last beat leaves
-  signal restart   : std_logic;
-  signal hold      : std_logic;
-  signal take      : std_logic;
-  signal counted   : std_logic;
-  signal emit      : std_logic;
+  signal advance : std_logic;
+  signal restart : std_logic;
+  signal hold    : std_logic;
+  signal take    : std_logic;
+  signal counted : std_logic;
+  signal emit    : std_logic;
   -- Counter controls: a clear beats a step, so that both map onto the
   -- flip-flops' reset and enable pins and the next value is the carry chain.
   -- The four counters are written here rather than as fastnms_position
@@ -282,11 +281,9 @@ begin
   -- An output beat: every clock while flushing, with each pixel in lockstep
   -- (take, which is a_valid and not a_sof there), and with the first window's
   -- pixel when idle (take and at_start, the same there).
-  -- The frame's last output beat is always a border beat of the flush.
-  flush_end <= out_last;
-  emit      <= '1' when out_state = flush else
-               a_valid and not a_sof when out_state = lockstep else
-               a_valid and not a_sof and at_start;
+  emit <= '1' when out_state = flush else
+          a_valid and not a_sof when out_state = lockstep else
+          a_valid and not a_sof and at_start;
 
   -- Counter controls (a clear beats a step: the flip-flops' reset and enable).
   in_x_clear  <= rst or (advance and (restart or (counted and in_x_last)));
@@ -295,7 +292,9 @@ begin
   in_y_step   <= advance and counted and in_x_last;
   out_x_clear <= rst or (advance and emit and out_x_last);
   out_x_step  <= advance and emit;
-  out_y_clear <= rst or (advance and flush_end);
+  -- The frame's last output beat (out_last) is always a border beat of the
+  -- flush, where every clock emits.
+  out_y_clear <= rst or (advance and out_last);
   out_y_step  <= advance and emit and out_x_last;
 
   counters : process (clk) is
@@ -484,9 +483,9 @@ begin
         if restart = '1' then
           blocked <= '0';
         elsif counted = '1' then
-          blocked <= pre_start and out_busy and not flush_end;
+          blocked <= pre_start and out_busy and not out_last;
         else
-          blocked <= blocked and not flush_end;
+          blocked <= blocked and not out_last;
         end if;
       end if;
 
