@@ -1,9 +1,10 @@
 """Step-by-step model of the region NMS hardware (rtl/nms/fastnms_nms_region.vhd).
 
 It holds exactly the state the RTL holds and changes it with the same operations, one column
-per step: the previous row's corner bits (row memory), a link table and a data table indexed
+per step: the previous row's corner bits (row memory), a data table and two bit tables indexed
 by run slot (start column // 2), a stack of the previous row's open classes, and the current
-run's class. Its records, in closing order, must equal `nms.nms_region` as sets; its asserts
+run's class. The bit tables say, per run, whether it is the first run of its class in its row
+("head", kept per row parity) and whether it is the last ("last"). Its records, in closing order, must equal `nms.nms_region` as sets; its asserts
 are the design's invariants (the stack discipline, one access per memory port per step, every
 table word read in the row after the one that wrote it). docs/fastnms_nms_region.md explains
 the algorithm; this file is its executable form.
@@ -11,7 +12,10 @@ the algorithm; this file is its executable form.
 Why no content needs a stall: the classes of one row's runs never cross (two regions cannot
 interleave along a row without meeting above it), so the open classes of the previous row
 nest and live on a stack, and every operation of a step touches only the stack's top two
-entries, the current run's class and one word of each table.
+entries, the current run's class and one word of each table. Nesting also makes the stack's
+moves known from two bits per run of the previous row: a run that is not its class's first
+continues the class on top (the only open class it can belong to), a first run pushes; the
+class's last run pops it.
 
 Clock schedule (what `RegionStream.run` models clock by clock): a current-row step takes one
 input pixel; rows >= 1 step the previous row's reader in lock-step with it. After a frame's
@@ -27,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-NONE = -1  # "no slot" in target fields
+NONE = -1  # "no slot" in head and tail fields
 
 
 def key(score: int, x: int, y: int) -> tuple[int, int, int]:
@@ -43,7 +47,7 @@ def best(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, in
 class Entry:
     """A previous-row class on the stack (an open region seen from the current row)."""
 
-    target: int  # slot of its next run in the previous row, NONE after its last
+    last: bool  # its run under the reader is its last in the previous row
     data: tuple[int, int, int]  # best key (valid unless merged into the entry above)
     head: int = NONE  # slot of its first run in the current row, NONE if none yet
     tail: int = NONE  # slot of its latest run in the current row
@@ -99,7 +103,10 @@ class RegionStream:
         self.max_width = max_width
         self.stack_depth = stack_depth(max_width)
         self.data = _Table()
-        self.link = _Table()
+        self.head = _Table()  # word (row parity, slot): the run is its class's first
+        self.last = _Table()  # word slot: the run is its class's last
+        self.parity: dict[tuple[int, int], int] = {}  # (frame, row) -> global row parity
+        self.rows_seen = 0
         self.stack: list[Entry] = []
         self.stats = Stats()
         self.out: list[tuple[int, int, int]] = []
@@ -128,25 +135,28 @@ class RegionStream:
         row, or None (flush). prev_tag / cur_tag: (frame, row) of those rows.
         """
         eol = x == width - 1
-        self.data.writes_this_step = 0
-        self.link.writes_this_step = 0
+        for t in self.tables:
+            t.writes_this_step = 0
         # The last column of a row may write a table twice (a current run and a previous-row
         # run that end there without touching finalize two classes; or a contact links and
         # the class then ends); the second write waits in a spare register for the next
         # clock, whose step (column 0, or a flush) never writes.
-        self.data.allowed = self.link.allowed = 2 if eol else 1
+        for t in self.tables:
+            t.allowed = 2 if eol else 1
         pm, p0 = prev if prev is not None else (0, 0)
         cm, c0, score = cur if cur is not None else (0, 0, 0)
         slot = x // 2
         pushed = False
-        # 1. A previous-row run starts: its class continues the top, or is pushed.
+        # 1. A previous-row run starts: a run that is not its class's first continues the top
+        # (classes nest, so its class is the top), a first run pushes its class.
         if p0 and not pm:
-            assert all(e.target != slot for e in self.stack[:-1]), "crossing classes"
-            if self.stack and self.stack[-1].target == slot:
-                self.stack[-1].target = self.link.read(slot, prev_tag)
+            last = self.last.read(slot, prev_tag)
+            if not self.head.read((self.parity[prev_tag], slot), prev_tag):
+                assert self.stack, "a continuing run without an open class"
+                self.stack[-1].last = last
             else:
                 data = self.data.read(slot, prev_tag)
-                self.stack.append(Entry(self.link.read(slot, prev_tag), data))
+                self.stack.append(Entry(last, data))
                 pushed = True
                 assert len(self.stack) <= self.stack_depth, "stack overflow"
                 self.stats.max_depth = max(self.stats.max_depth, len(self.stack))
@@ -165,8 +175,9 @@ class RegionStream:
                 g = self.group
                 if top.head == NONE:
                     top.head = g.head
-                else:
-                    self.link.write(top.tail, g.head, cur_tag)
+                else:  # the class's latest run is no longer its last, g's first not a first
+                    self.last.write(top.tail, False, cur_tag)
+                    self.head.write((self.parity[cur_tag], g.head), False, cur_tag)
                 top.tail = g.tail
                 top.data = best(top.data, g.data)
                 self.group = None
@@ -191,7 +202,7 @@ class RegionStream:
                 self._finalize(self.group, cur_tag)
             self._reset_current()
         # 6. A previous-row run ends: the last run of its class pops it.
-        if ((pm and not p0) or (p0 and eol)) and self.stack[-1].target == NONE:
+        if ((pm and not p0) or (p0 and eol)) and self.stack[-1].last:
             e = self.stack.pop()
             if e.merged:
                 below = self.stack[-1]
@@ -210,11 +221,16 @@ class RegionStream:
         if eol and prev is not None and cur is not None:
             assert not self.stack, "classes left open at the end of a row"
 
+    @property
+    def tables(self) -> tuple[_Table, _Table, _Table]:
+        return (self.data, self.head, self.last)
+
     def _finalize(self, g: Group | Entry, tag: tuple[int, int]) -> None:
         """The class has all its current-row runs: its data waits at its first run's slot,
-        and its last run links to nothing."""
+        which is marked first, and its latest run is marked last."""
         self.data.write(g.head, g.data, tag)
-        self.link.write(g.tail, NONE, tag)
+        self.head.write((self.parity[tag], g.head), True, tag)
+        self.last.write(g.tail, True, tag)
 
     # ---- clock schedule -------------------------------------------------------------------
 
@@ -240,6 +256,9 @@ class RegionStream:
             assert 3 <= w <= self.max_width, "width out of range"
             for y in range(h):
                 bits[(f, y)] = [int(b) for b in corner[y]]
+                # The parity of the row counted over every frame, as the hardware counts it.
+                self.parity[(f, y)] = self.rows_seen % 2
+                self.rows_seen += 1
                 pixels += [(f, y, x, w, h, int(score[y, x])) for x in range(w)]
         per_frame: list[list[tuple[int, int, int]]] = [[] for _ in frames]
         eof_clock = [0] * len(frames)
@@ -249,7 +268,7 @@ class RegionStream:
         queued = None  # the next frame's flush, when its last pixel came before the reader
         eof_pending = None  # frame whose end-of-frame beat is due
         i = clock = 0
-        spare_busy = {id(self.data): False, id(self.link): False}
+        spare_busy = {id(t): False for t in self.tables}
         while i < len(pixels) or flush or queued or eof_pending is not None or fifo:
             if fifo and out_ready(clock):
                 kind, f, rec = fifo.pop(0)
@@ -259,7 +278,7 @@ class RegionStream:
                 else:
                     per_frame[f].append(rec)
             room = len(fifo) < out_depth  # a clock emits at most one record
-            before = {id(t): t.total for t in (self.data, self.link)}
+            before = {id(t): t.total for t in self.tables}
             emitted = []
             flushed_past = -1
             if flush is None and queued is not None:
@@ -306,7 +325,7 @@ class RegionStream:
                 emitted.append(("eof", eof_pending, None))
                 eof_pending = None
             fifo += emitted
-            for t in (self.data, self.link):  # one write port, one spare register
+            for t in self.tables:  # one write port, one spare register
                 n = t.total - before[id(t)]
                 assert n <= 2 and not (spare_busy[id(t)] and n), "write port overbooked"
                 spare_busy[id(t)] = n == 2

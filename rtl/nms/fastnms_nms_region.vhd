@@ -5,10 +5,13 @@
 -- The algorithm is golden/region_stream.py, step for step; the design, its
 -- invariants and the clock schedule are in docs/fastnms_nms_region.md. In
 -- short: the classes of one row's runs never cross, so the previous row's open
--- classes nest and live on a stack; a link table (slot = start column / 2)
--- chains each class's runs along a row, a data table holds each class's best
--- key at its first run's slot, and every column changes only the stack's top
--- two entries, the current run's class and one word of each table.
+-- classes nest and live on a stack; per run (slot = start column / 2) a bit
+-- says whether it is the first run of its class in its row (head table, one
+-- bank per row parity) and one whether it is the last (last table): a first
+-- run pushes its class, a later run continues the top, a last run pops it. A
+-- data table holds each class's best key at its first run's slot, and every
+-- column changes only the stack's top two entries, the current run's class
+-- and one word of each table.
 --
 -- Clocks: the current row steps one column per accepted pixel; rows >= 1 step
 -- the previous row's reader with it. After a frame's last pixel the reader
@@ -72,7 +75,7 @@ architecture rtl of fastnms_nms_region is
   constant STACK_DEPTH : positive := (MAX_WIDTH + 1) / 4 + 1;
   constant STACK_WORDS : positive := maximum(STACK_DEPTH - 2, 1);
   constant DB          : positive := bits_for(STACK_DEPTH);
-  constant ENTRY_BITS  : positive := 3 * SB + 1 + KB;
+  constant ENTRY_BITS  : positive := 2 * SB + 2 + KB;
   constant OUT_BITS    : positive := 1 + XB + YB + SCORE_BITS;
 
   subtype slot_t is unsigned(SB - 1 downto 0);
@@ -81,7 +84,7 @@ architecture rtl of fastnms_nms_region is
 
   -- A previous-row class on the stack.
   type entry_t is record
-    target : slot_t;    -- slot of its next run in the previous row, NONE after the last
+    last   : std_logic; -- its run under the reader is its last in the previous row
     head   : slot_t;    -- slot of its first run in the current row, NONE if none yet
     tail   : slot_t;    -- slot of its latest run in the current row
     merged : std_logic; -- also holds the class of the entry below
@@ -91,8 +94,8 @@ architecture rtl of fastnms_nms_region is
   function pack (e : entry_t) return std_logic_vector is
   begin
 
-    return std_logic_vector(e.target) & std_logic_vector(e.head) &
-           std_logic_vector(e.tail) & e.merged & std_logic_vector(e.key);
+    return e.last & std_logic_vector(e.head) & std_logic_vector(e.tail) & e.merged &
+           std_logic_vector(e.key);
 
   end function pack;
 
@@ -100,9 +103,9 @@ architecture rtl of fastnms_nms_region is
     variable e : entry_t;
   begin
 
-    e.target := unsigned(v(ENTRY_BITS - 1 downto ENTRY_BITS - SB));
-    e.head   := unsigned(v(ENTRY_BITS - SB - 1 downto ENTRY_BITS - 2 * SB));
-    e.tail   := unsigned(v(ENTRY_BITS - 2 * SB - 1 downto KB + 1));
+    e.last   := v(ENTRY_BITS - 1);
+    e.head   := unsigned(v(ENTRY_BITS - 2 downto ENTRY_BITS - 1 - SB));
+    e.tail   := unsigned(v(ENTRY_BITS - 2 - SB downto KB + 1));
     e.merged := v(KB);
     e.key    := unsigned(v(KB - 1 downto 0));
     return e;
@@ -170,15 +173,19 @@ architecture rtl of fastnms_nms_region is
     data : key_t;
   end record data_write_t;
 
-  type link_write_t is record
+  -- A bit table's write: the slot, then the bank (the row's parity; '0' in
+  -- the last table, which has one bank).
+  subtype bit_addr_t is unsigned(SB downto 0);
+
+  type bit_write_t is record
     en   : std_logic;
-    addr : slot_t;
-    data : slot_t;
-  end record link_write_t;
+    addr : bit_addr_t;
+    data : std_logic;
+  end record bit_write_t;
 
   -- (No constant wider than 32 bits: GHDL's Verilog output writes those as
   -- strings. The data of a write that is not enabled does not matter.)
-  constant NO_LINK_WRITE : link_write_t := (en => '0', addr => (others => '0'), data => NONE);
+  constant NO_BIT_WRITE : bit_write_t := (en => '0', addr => (others => '0'), data => '0');
 
   -- Input, through a skid buffer (registered in_ready).
   signal px_valid  : std_logic;
@@ -242,17 +249,32 @@ architecture rtl of fastnms_nms_region is
   signal slot_re    : std_logic;
   signal slot_ra    : slot_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
-  signal link_w     : link_write_t;
-  signal link_spare : link_write_t;
-  signal link_rd    : std_logic_vector(SB - 1 downto 0);
-  -- The slot read last, and what was written to it since the read.
+  signal slot_rbank : std_logic;
+  signal head_w     : bit_write_t;
+  signal head_spare : bit_write_t;
+  signal head_rd    : std_logic_vector(0 downto 0);
+  signal last_w     : bit_write_t;
+  signal last_spare : bit_write_t;
+  signal last_rd    : std_logic_vector(0 downto 0);
+  -- The slot (and head bank) read last, and what was written to it since the
+  -- read.
   signal watch      : slot_t;
+  signal watch_head : bit_addr_t;
+  signal watch_last : bit_addr_t;
   signal data_fwd_v : std_logic;
   signal data_fwd   : key_t;
-  signal link_fwd_v : std_logic;
-  signal link_fwd   : slot_t;
+  signal head_fwd_v : std_logic;
+  signal head_fwd   : std_logic;
+  signal last_fwd_v : std_logic;
+  signal last_fwd   : std_logic;
   signal cur_data   : key_t;
-  signal cur_link   : slot_t;
+  signal cur_head   : std_logic;
+  signal cur_last   : std_logic;
+  -- Row parity of the current row and of the reader's row (a bank of the
+  -- head table each): counted over all rows of all frames, so the row being
+  -- read and the row being written are never in the same bank.
+  signal cur_bank   : std_logic;
+  signal r_bank     : std_logic;
   signal stack_we   : std_logic;
   signal stack_wa   : unsigned(clog2(STACK_WORDS) - 1 downto 0);
   signal stack_wd   : std_logic_vector(ENTRY_BITS - 1 downto 0);
@@ -358,6 +380,9 @@ begin
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
+  -- The head table bank read: the reader's row, or the next one from its last
+  -- column on.
+  slot_rbank <= r_bank xor (rstep and r_last);
   f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
@@ -414,14 +439,24 @@ begin
       cur_data <= unsigned(data_rd);
     end if;
 
-    if link_w.en = '1' and link_w.addr = watch then
-      cur_link <= link_w.data;
-    elsif link_spare.en = '1' and link_spare.addr = watch then
-      cur_link <= link_spare.data;
-    elsif link_fwd_v = '1' then
-      cur_link <= link_fwd;
+    if head_w.en = '1' and head_w.addr = watch_head then
+      cur_head <= head_w.data;
+    elsif head_spare.en = '1' and head_spare.addr = watch_head then
+      cur_head <= head_spare.data;
+    elsif head_fwd_v = '1' then
+      cur_head <= head_fwd;
     else
-      cur_link <= unsigned(link_rd);
+      cur_head <= head_rd(0);
+    end if;
+
+    if last_w.en = '1' and last_w.addr = watch_last then
+      cur_last <= last_w.data;
+    elsif last_spare.en = '1' and last_spare.addr = watch_last then
+      cur_last <= last_spare.data;
+    elsif last_fwd_v = '1' then
+      cur_last <= last_fwd;
+    else
+      cur_last <= last_rd(0);
     end if;
 
   end process forward;
@@ -445,8 +480,10 @@ begin
     variable pix        : key_t;
     variable dw1        : data_write_t;
     variable dw2        : data_write_t;
-    variable lw1        : link_write_t;
-    variable lw2        : link_write_t;
+    variable hw1        : bit_write_t;
+    variable hw2        : bit_write_t;
+    variable lw1        : bit_write_t;
+    variable lw2        : bit_write_t;
     variable emit       : boolean;
     variable emit_key   : key_t;
     variable touch      : boolean;
@@ -471,19 +508,49 @@ begin
 
     end procedure add_data_write;
 
-    procedure add_link_write (
-      addr : slot_t;
-      data : slot_t
+    -- The current row's bank of the head table.
+    procedure add_head_write (
+      slot : slot_t;
+      data : std_logic
+    ) is
+    begin
+
+      if hw1.en = '0' then
+        hw1 := (en => '1', addr => slot & cur_bank, data => data);
+      else
+        hw2 := (en => '1', addr => slot & cur_bank, data => data);
+      end if;
+
+    end procedure add_head_write;
+
+    procedure add_last_write (
+      slot : slot_t;
+      data : std_logic
     ) is
     begin
 
       if lw1.en = '0' then
-        lw1 := (en => '1', addr => addr, data => data);
+        lw1 := (en => '1', addr => slot & '0', data => data);
       else
-        lw2 := (en => '1', addr => addr, data => data);
+        lw2 := (en => '1', addr => slot & '0', data => data);
       end if;
 
-    end procedure add_link_write;
+    end procedure add_last_write;
+
+    -- The class has all its current-row runs: its key waits at its first
+    -- run's slot, which is marked first, and its latest run is marked last.
+    procedure finalize (
+      head : slot_t;
+      tail : slot_t;
+      key  : key_t
+    ) is
+    begin
+
+      add_data_write(head, key);
+      add_head_write(head, '1');
+      add_last_write(tail, '1');
+
+    end procedure finalize;
 
   begin
 
@@ -499,8 +566,10 @@ begin
       v_act      := active;
       dw1        := (en => '0', addr => c_head, data => c_key);
       dw2        := dw1;
-      lw1        := NO_LINK_WRITE;
-      lw2        := NO_LINK_WRITE;
+      hw1        := NO_BIT_WRITE;
+      hw2        := NO_BIT_WRITE;
+      lw1        := NO_BIT_WRITE;
+      lw2        := NO_BIT_WRITE;
       emit       := false;
       emit_key   := top.key;
       pushed     := false;
@@ -529,10 +598,16 @@ begin
         severity failure;
       -- synthesis translate_on
 
-      -- 1. A previous-row run starts at rcol: continue the top's class, or push.
+      -- 1. A previous-row run starts at rcol: a run that is not its class's
+      -- first continues the top's class (classes nest), a first run pushes.
       if rstep = '1' and p0 = '1' and pm = '0' then
-        if v_depth /= 0 and v_top.target = slot_of(rcol) then
-          v_top.target := cur_link;
+        -- synthesis translate_off
+        assert not (cur_head = '0' and v_depth = 0)
+          report "fastnms_nms_region: a continuing run without an open class"
+          severity failure;
+        -- synthesis translate_on
+        if cur_head = '0' then
+          v_top.last := cur_last;
         else
           if v_depth >= 2 then
             stack_we  <= '1';
@@ -545,7 +620,7 @@ begin
           v_second := v_top;
           v_top    :=
           (
-            target => cur_link,
+            last => cur_last,
             head => NONE,
             tail => NONE,
             merged => '0',
@@ -575,7 +650,10 @@ begin
           if v_top.head = NONE then
             v_top.head := v_head;
           else
-            add_link_write(v_top.tail, v_head);
+            -- The class's latest run is no longer its last, this run's class
+            -- no longer starts at its own first run.
+            add_last_write(v_top.tail, '0');
+            add_head_write(v_head, '0');
           end if;
           v_top.tail := v_tail;
           merge_en   := true;
@@ -604,8 +682,7 @@ begin
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
       if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
         if v_att = '0' then
-          add_data_write(v_head, v_key);
-          add_link_write(v_tail, NONE);
+          finalize(v_head, v_tail, v_key);
         end if;
         v_act := '0';
         v_att := '0';
@@ -613,7 +690,7 @@ begin
 
       -- 6. A previous-row run ends: the last run of its class pops it.
       if rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol)) and
-         v_top.target = NONE then
+         v_top.last = '1' then
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
@@ -633,8 +710,7 @@ begin
           v_tail := popped.tail;
           v_att  := '0';
         elsif popped.head /= NONE then
-          add_data_write(popped.head, popped.key);
-          add_link_write(popped.tail, NONE);
+          finalize(popped.head, popped.tail, popped.key);
         else
           emit     := true;
           emit_key := popped.key;
@@ -689,6 +765,13 @@ begin
           cm <= c0;
           cx <= cx + 1;
         end if;
+      end if;
+
+      if cstep = '1' and c_eol then
+        cur_bank <= not cur_bank;
+      end if;
+      if rstep = '1' and r_last = '1' then
+        r_bank <= not r_bank;
       end if;
 
       -- The reader's next column, and its prefetched bits.
@@ -783,16 +866,24 @@ begin
         data_w     <= dw1;
         data_spare <= dw2;
       end if;
-      if link_spare.en = '1' then
-        link_w     <= link_spare;
-        link_spare <= NO_LINK_WRITE;
+      if head_spare.en = '1' then
+        head_w     <= head_spare;
+        head_spare <= NO_BIT_WRITE;
       else
-        link_w     <= lw1;
-        link_spare <= lw2;
+        head_w     <= hw1;
+        head_spare <= hw2;
+      end if;
+      if last_spare.en = '1' then
+        last_w     <= last_spare;
+        last_spare <= NO_BIT_WRITE;
+      else
+        last_w     <= lw1;
+        last_spare <= lw2;
       end if;
 
       -- synthesis translate_off
-      assert not ((data_spare.en = '1' and dw1.en = '1') or (link_spare.en = '1' and lw1.en = '1'))
+      assert not ((data_spare.en = '1' and dw1.en = '1') or (head_spare.en = '1' and hw1.en = '1') or
+                  (last_spare.en = '1' and lw1.en = '1'))
         report "fastnms_nms_region: table writes on consecutive clocks"
         severity failure;
       -- synthesis translate_on
@@ -802,16 +893,24 @@ begin
         watch      <= slot_ra;
         data_fwd_v <= data_w.en and to_sl(data_w.addr = slot_ra);
         data_fwd   <= data_w.data;
-        link_fwd_v <= link_w.en and to_sl(link_w.addr = slot_ra);
-        link_fwd   <= link_w.data;
+        watch_head <= slot_ra & slot_rbank;
+        watch_last <= slot_ra & '0';
+        head_fwd_v <= head_w.en and to_sl(head_w.addr = (slot_ra & slot_rbank));
+        head_fwd   <= head_w.data;
+        last_fwd_v <= last_w.en and to_sl(last_w.addr = (slot_ra & '0'));
+        last_fwd   <= last_w.data;
       else
         if data_w.en = '1' and data_w.addr = watch then
           data_fwd_v <= '1';
           data_fwd   <= data_w.data;
         end if;
-        if link_w.en = '1' and link_w.addr = watch then
-          link_fwd_v <= '1';
-          link_fwd   <= link_w.data;
+        if head_w.en = '1' and head_w.addr = watch_head then
+          head_fwd_v <= '1';
+          head_fwd   <= head_w.data;
+        end if;
+        if last_w.en = '1' and last_w.addr = watch_last then
+          last_fwd_v <= '1';
+          last_fwd   <= last_w.data;
         end if;
       end if;
 
@@ -868,10 +967,15 @@ begin
         third_rd2     <= '0';
         data_w.en     <= '0';
         data_spare.en <= '0';
-        link_w        <= NO_LINK_WRITE;
-        link_spare    <= NO_LINK_WRITE;
+        head_w        <= NO_BIT_WRITE;
+        head_spare    <= NO_BIT_WRITE;
+        last_w        <= NO_BIT_WRITE;
+        last_spare    <= NO_BIT_WRITE;
         data_fwd_v    <= '0';
-        link_fwd_v    <= '0';
+        head_fwd_v    <= '0';
+        last_fwd_v    <= '0';
+        cur_bank      <= '0';
+        r_bank        <= '0';
       end if;
     end if;
 
@@ -907,19 +1011,37 @@ begin
       rd_data => data_rd
     );
 
-  link_table : entity work.fastnms_ram_sdp
+  -- One bit per word: LUT RAM.
+  head_table : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => SLOTS,
-      WIDTH => SB
+      DEPTH => 2 * SLOTS,
+      WIDTH => 1,
+      STYLE => "distributed"
     )
     port map (
       clk     => clk,
-      wr_en   => link_w.en,
-      wr_addr => resize(link_w.addr, clog2(SLOTS)),
-      wr_data => std_logic_vector(link_w.data),
+      wr_en   => head_w.en,
+      wr_addr => resize(head_w.addr, clog2(2 * SLOTS)),
+      wr_data => (0 => head_w.data),
+      rd_en   => slot_re,
+      rd_addr => resize(slot_ra & slot_rbank, clog2(2 * SLOTS)),
+      rd_data => head_rd
+    );
+
+  last_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => 1,
+      STYLE => "distributed"
+    )
+    port map (
+      clk     => clk,
+      wr_en   => last_w.en,
+      wr_addr => resize(last_w.addr(SB downto 1), clog2(SLOTS)),
+      wr_data => (0 => last_w.data),
       rd_en   => slot_re,
       rd_addr => resize(slot_ra, clog2(SLOTS)),
-      rd_data => link_rd
+      rd_data => last_rd
     );
 
   stack_memory : entity work.fastnms_ram_sdp
