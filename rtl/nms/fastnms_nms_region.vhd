@@ -187,6 +187,66 @@ architecture rtl of fastnms_nms_region is
   -- strings. The data of a write that is not enabled does not matter.)
   constant NO_BIT_WRITE : bit_write_t := (en => '0', addr => (others => '0'), data => '0');
 
+  -- A bit table's reads, two columns ahead of the reader: the read in the
+  -- RAM (its address, and a write to it since, which the RAM may not show),
+  -- and the bit of the reader's column, a register. Writes after a read
+  -- update it: the previous row's last writes land while the next row's
+  -- first columns are read.
+  type bit_pipe_t is record
+    addr1 : bit_addr_t;
+    fwd_v : std_logic;
+    fwd   : std_logic;
+    addr2 : bit_addr_t;
+    bit2  : std_logic;
+  end record bit_pipe_t;
+
+  constant BIT_PIPE_RESET : bit_pipe_t :=
+  (
+    addr1 => (others => '0'),
+    fwd_v => '0',
+    fwd => '0',
+    addr2 => (others => '0'),
+    bit2 => '0'
+  );
+
+  -- The pipeline after one clock: it moves on with a reader step (reading
+  -- ra), and takes the write w that lands at the end of the clock.
+  function bit_pipe_next (
+    p     : bit_pipe_t;
+    w     : bit_write_t;
+    step  : std_logic;
+    ra    : bit_addr_t;
+    rdata : std_logic
+  ) return bit_pipe_t is
+    variable n : bit_pipe_t;
+  begin
+
+    n := p;
+    if step = '1' then
+      n.addr2 := p.addr1;
+      if w.en = '1' and w.addr = p.addr1 then
+        n.bit2 := w.data;
+      elsif p.fwd_v = '1' then
+        n.bit2 := p.fwd;
+      else
+        n.bit2 := rdata;
+      end if;
+      n.addr1 := ra;
+      n.fwd_v := w.en and to_sl(w.addr = ra);
+      n.fwd   := w.data;
+    else
+      if w.en = '1' and w.addr = p.addr2 then
+        n.bit2 := w.data;
+      end if;
+      if w.en = '1' and w.addr = p.addr1 then
+        n.fwd_v := '1';
+        n.fwd   := w.data;
+      end if;
+    end if;
+    return n;
+
+  end function bit_pipe_next;
+
   -- Input, through a skid buffer (registered in_ready).
   signal px_valid  : std_logic;
   signal px_ready  : std_logic;
@@ -249,27 +309,24 @@ architecture rtl of fastnms_nms_region is
   signal slot_re    : std_logic;
   signal slot_ra    : slot_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
-  signal slot_rbank : std_logic;
+  signal bits_ra    : slot_t;
   signal head_w     : bit_write_t;
   signal head_spare : bit_write_t;
   signal head_rd    : std_logic_vector(0 downto 0);
   signal last_w     : bit_write_t;
   signal last_spare : bit_write_t;
   signal last_rd    : std_logic_vector(0 downto 0);
-  -- The slot (and head bank) read last, and what was written to it since the
+  signal head_pipe  : bit_pipe_t;
+  signal last_pipe  : bit_pipe_t;
+  -- The reader's column is in slot 0: its run is the first of the row, so
+  -- the first of its class.
+  signal r_slot0    : std_logic;
+  -- The data table's slot read last, and what was written to it since the
   -- read.
   signal watch      : slot_t;
-  signal watch_head : bit_addr_t;
-  signal watch_last : bit_addr_t;
   signal data_fwd_v : std_logic;
   signal data_fwd   : key_t;
-  signal head_fwd_v : std_logic;
-  signal head_fwd   : std_logic;
-  signal last_fwd_v : std_logic;
-  signal last_fwd   : std_logic;
   signal cur_data   : key_t;
-  signal cur_head   : std_logic;
-  signal cur_last   : std_logic;
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
   -- read and the row being written are never in the same bank.
@@ -380,9 +437,10 @@ begin
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
-  -- The head table bank read: the reader's row, or the next one from its last
-  -- column on.
-  slot_rbank <= r_bank xor (rstep and r_last);
+  -- The bit tables are read at the row memory's column, two ahead of the
+  -- reader; in its row's last two columns that is slot 0 of the next row,
+  -- whose head bit is never read (r_slot0).
+  bits_ra <= slot_of(r_ahead);
   f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
@@ -439,26 +497,6 @@ begin
       cur_data <= unsigned(data_rd);
     end if;
 
-    if head_w.en = '1' and head_w.addr = watch_head then
-      cur_head <= head_w.data;
-    elsif head_spare.en = '1' and head_spare.addr = watch_head then
-      cur_head <= head_spare.data;
-    elsif head_fwd_v = '1' then
-      cur_head <= head_fwd;
-    else
-      cur_head <= head_rd(0);
-    end if;
-
-    if last_w.en = '1' and last_w.addr = watch_last then
-      cur_last <= last_w.data;
-    elsif last_spare.en = '1' and last_spare.addr = watch_last then
-      cur_last <= last_spare.data;
-    elsif last_fwd_v = '1' then
-      cur_last <= last_fwd;
-    else
-      cur_last <= last_rd(0);
-    end if;
-
   end process forward;
 
   step : process (clk) is
@@ -493,6 +531,13 @@ begin
     variable flush_ends : boolean;
     variable eof_step   : boolean;
     variable v_primed   : std_logic;
+    variable p_start    : boolean;
+    variable p_end      : boolean;
+    variable run_head   : std_logic;
+    variable run_last   : std_logic;
+    variable last_now   : std_logic;
+    variable cur_ends   : boolean;
+    variable ended      : entry_t; -- the current run's class, when it ends alone
 
     procedure add_data_write (
       addr : slot_t;
@@ -598,16 +643,43 @@ begin
         severity failure;
       -- synthesis translate_on
 
+      -- The bits of the previous-row run at rcol, from registers. The last
+      -- bit also takes the write landing now, which only the previous row's
+      -- last column makes (to slot 0, for column 0); the pop below never
+      -- needs it, as a run that starts at column 0 cannot end there.
+      p_start  := rstep = '1' and p0 = '1' and pm = '0';
+      p_end    := rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol));
+      run_head := head_pipe.bit2 or r_slot0;
+      last_now := last_pipe.bit2;
+      if last_w.en = '1' and last_w.addr = last_pipe.addr2 then
+        last_now := last_w.data;
+      end if;
+      run_last := top.last;
+      if p_start then
+        run_last := last_pipe.bit2;
+      end if;
+
+      -- synthesis translate_off
+      assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
+                  head_w.addr = head_pipe.addr2)
+        report "fastnms_nms_region: a head bit written as the reader takes it"
+        severity failure;
+      assert not (p_start and last_w.en = '1' and last_w.addr = last_pipe.addr2 and
+                  (rcol /= 0 or p_end))
+        report "fastnms_nms_region: a last bit written as the reader takes it"
+        severity failure;
+      -- synthesis translate_on
+
       -- 1. A previous-row run starts at rcol: a run that is not its class's
       -- first continues the top's class (classes nest), a first run pushes.
-      if rstep = '1' and p0 = '1' and pm = '0' then
+      if p_start then
         -- synthesis translate_off
-        assert not (cur_head = '0' and v_depth = 0)
+        assert not (run_head = '0' and v_depth = 0)
           report "fastnms_nms_region: a continuing run without an open class"
           severity failure;
         -- synthesis translate_on
-        if cur_head = '0' then
-          v_top.last := cur_last;
+        if run_head = '0' then
+          v_top.last := last_now;
         else
           if v_depth >= 2 then
             stack_we  <= '1';
@@ -620,7 +692,7 @@ begin
           v_second := v_top;
           v_top    :=
           (
-            last => cur_last,
+            last => last_now,
             head => NONE,
             tail => NONE,
             merged => '0',
@@ -680,17 +752,19 @@ begin
       v_top.key := best3(v_top.key, merge_en, merge_key, pix_to_top, pix);
 
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
+      -- Its finalize is written after a pop's (below): at a row's last column
+      -- the second write waits a clock in the spare register, and the pop's
+      -- can be to slot 0, which the next row's column 1 reads then.
+      cur_ends := false;
+      ended    := (last => '0', head => v_head, tail => v_tail, merged => '0', key => v_key);
       if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
-        if v_att = '0' then
-          finalize(v_head, v_tail, v_key);
-        end if;
-        v_act := '0';
-        v_att := '0';
+        cur_ends := v_att = '0';
+        v_act    := '0';
+        v_att    := '0';
       end if;
 
       -- 6. A previous-row run ends: the last run of its class pops it.
-      if rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol)) and
-         v_top.last = '1' then
+      if p_end and run_last = '1' then
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
@@ -715,6 +789,9 @@ begin
           emit     := true;
           emit_key := popped.key;
         end if;
+      end if;
+      if cur_ends then
+        finalize(ended.head, ended.tail, ended.key);
       end if;
 
       if cstep = '1' and c_eol then
@@ -770,13 +847,16 @@ begin
       if cstep = '1' and c_eol then
         cur_bank <= not cur_bank;
       end if;
+      head_pipe <= bit_pipe_next(head_pipe, head_w, rstep, bits_ra & r_bank, head_rd(0));
+      last_pipe <= bit_pipe_next(last_pipe, last_w, rstep, bits_ra & '0', last_rd(0));
       if rstep = '1' and r_last = '1' then
         r_bank <= not r_bank;
       end if;
 
       -- The reader's next column, and its prefetched bits.
       if rstep = '1' then
-        rcol <= r_next;
+        rcol    <= r_next;
+        r_slot0 <= r_last or to_sl(rcol = 0);
         if r_ahead = r_lastcol then
           r_ahead <= (others => '0');
         else
@@ -793,6 +873,7 @@ begin
         p0        <= row_rd(0);
         pm        <= '0';
         rcol      <= (others => '0');
+        r_slot0   <= '1';
         r_ahead   <= to_unsigned(2, XB);
         r_lastcol <= resize(cw - 1, XB);
       end if;
@@ -893,24 +974,10 @@ begin
         watch      <= slot_ra;
         data_fwd_v <= data_w.en and to_sl(data_w.addr = slot_ra);
         data_fwd   <= data_w.data;
-        watch_head <= slot_ra & slot_rbank;
-        watch_last <= slot_ra & '0';
-        head_fwd_v <= head_w.en and to_sl(head_w.addr = (slot_ra & slot_rbank));
-        head_fwd   <= head_w.data;
-        last_fwd_v <= last_w.en and to_sl(last_w.addr = (slot_ra & '0'));
-        last_fwd   <= last_w.data;
       else
         if data_w.en = '1' and data_w.addr = watch then
           data_fwd_v <= '1';
           data_fwd   <= data_w.data;
-        end if;
-        if head_w.en = '1' and head_w.addr = watch_head then
-          head_fwd_v <= '1';
-          head_fwd   <= head_w.data;
-        end if;
-        if last_w.en = '1' and last_w.addr = watch_last then
-          last_fwd_v <= '1';
-          last_fwd   <= last_w.data;
         end if;
       end if;
 
@@ -972,8 +1039,9 @@ begin
         last_w        <= NO_BIT_WRITE;
         last_spare    <= NO_BIT_WRITE;
         data_fwd_v    <= '0';
-        head_fwd_v    <= '0';
-        last_fwd_v    <= '0';
+        head_pipe     <= BIT_PIPE_RESET;
+        last_pipe     <= BIT_PIPE_RESET;
+        r_slot0       <= '1';
         cur_bank      <= '0';
         r_bank        <= '0';
       end if;
@@ -1023,8 +1091,8 @@ begin
       wr_en   => head_w.en,
       wr_addr => resize(head_w.addr, clog2(2 * SLOTS)),
       wr_data => (0 => head_w.data),
-      rd_en   => slot_re,
-      rd_addr => resize(slot_ra & slot_rbank, clog2(2 * SLOTS)),
+      rd_en   => rstep,
+      rd_addr => resize(bits_ra & r_bank, clog2(2 * SLOTS)),
       rd_data => head_rd
     );
 
@@ -1039,8 +1107,8 @@ begin
       wr_en   => last_w.en,
       wr_addr => resize(last_w.addr(SB downto 1), clog2(SLOTS)),
       wr_data => (0 => last_w.data),
-      rd_en   => slot_re,
-      rd_addr => resize(slot_ra, clog2(SLOTS)),
+      rd_en   => rstep,
+      rd_addr => resize(bits_ra, clog2(SLOTS)),
       rd_data => last_rd
     );
 
