@@ -187,65 +187,76 @@ architecture rtl of fastnms_nms_region is
   -- strings. The data of a write that is not enabled does not matter.)
   constant NO_BIT_WRITE : bit_write_t := (en => '0', addr => (others => '0'), data => '0');
 
-  -- A bit table's reads, two columns ahead of the reader: the read in the
-  -- RAM (its address, and a write to it since, which the RAM may not show),
-  -- and the bit of the reader's column, a register. Writes after a read
-  -- update it: the previous row's last writes land while the next row's
-  -- first columns are read.
-  type bit_pipe_t is record
+  -- A table's reads, two columns ahead of the reader: the read in the RAM
+  -- (its address, and a write to it since, which the RAM may not show), and
+  -- the word of the reader's column, a register. Writes after a read update
+  -- it: the previous row's last writes land while the next row's first
+  -- columns are read. Words are key wide; the bit tables use bit 0.
+  subtype word_t is std_logic_vector(KB - 1 downto 0);
+
+  type ahead_t is record
     addr1 : bit_addr_t;
     fwd_v : std_logic;
-    fwd   : std_logic;
+    fwd   : word_t;
     addr2 : bit_addr_t;
-    bit2  : std_logic;
-  end record bit_pipe_t;
+    word2 : word_t;
+  end record ahead_t;
 
-  constant BIT_PIPE_RESET : bit_pipe_t :=
+  constant AHEAD_RESET : ahead_t :=
   (
     addr1 => (others => '0'),
     fwd_v => '0',
-    fwd => '0',
+    fwd => (others => '0'),
     addr2 => (others => '0'),
-    bit2 => '0'
+    word2 => (others => '0')
   );
 
-  -- The pipeline after one clock: it moves on with a reader step (reading
-  -- ra), and takes the write w that lands at the end of the clock.
-  function bit_pipe_next (
-    p     : bit_pipe_t;
-    w     : bit_write_t;
-    step  : std_logic;
-    ra    : bit_addr_t;
-    rdata : std_logic
-  ) return bit_pipe_t is
-    variable n : bit_pipe_t;
+  -- The reads after one clock: they move on with a reader step (reading ra),
+  -- and take the write (w_en, w_addr, w_data) that lands at the clock's end.
+  function ahead_next (
+    p      : ahead_t;
+    w_en   : std_logic;
+    w_addr : bit_addr_t;
+    w_data : word_t;
+    step   : std_logic;
+    ra     : bit_addr_t;
+    rdata  : word_t
+  ) return ahead_t is
+    variable n : ahead_t;
   begin
 
     n := p;
     if step = '1' then
       n.addr2 := p.addr1;
-      if w.en = '1' and w.addr = p.addr1 then
-        n.bit2 := w.data;
+      if w_en = '1' and w_addr = p.addr1 then
+        n.word2 := w_data;
       elsif p.fwd_v = '1' then
-        n.bit2 := p.fwd;
+        n.word2 := p.fwd;
       else
-        n.bit2 := rdata;
+        n.word2 := rdata;
       end if;
       n.addr1 := ra;
-      n.fwd_v := w.en and to_sl(w.addr = ra);
-      n.fwd   := w.data;
+      n.fwd_v := w_en and to_sl(w_addr = ra);
+      n.fwd   := w_data;
     else
-      if w.en = '1' and w.addr = p.addr2 then
-        n.bit2 := w.data;
+      if w_en = '1' and w_addr = p.addr2 then
+        n.word2 := w_data;
       end if;
-      if w.en = '1' and w.addr = p.addr1 then
+      if w_en = '1' and w_addr = p.addr1 then
         n.fwd_v := '1';
-        n.fwd   := w.data;
+        n.fwd   := w_data;
       end if;
     end if;
     return n;
 
-  end function bit_pipe_next;
+  end function ahead_next;
+
+  function word (b : std_logic) return word_t is
+  begin
+
+    return (KB - 1 downto 1 => '0') & b;
+
+  end function word;
 
   -- Input, through a skid buffer (registered in_ready).
   signal px_valid  : std_logic;
@@ -306,27 +317,25 @@ architecture rtl of fastnms_nms_region is
   signal row_rd     : std_logic_vector(0 downto 0);
   signal data_w     : data_write_t;
   signal data_spare : data_write_t;
-  signal slot_re    : std_logic;
-  signal slot_ra    : slot_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
-  signal bits_ra    : slot_t;
+  signal ahead_slot    : slot_t;
   signal head_w     : bit_write_t;
   signal head_spare : bit_write_t;
   signal head_rd    : std_logic_vector(0 downto 0);
   signal last_w     : bit_write_t;
   signal last_spare : bit_write_t;
   signal last_rd    : std_logic_vector(0 downto 0);
-  signal head_pipe  : bit_pipe_t;
-  signal last_pipe  : bit_pipe_t;
+  signal data_ahead : ahead_t;
+  signal head_ahead : ahead_t;
+  signal last_ahead : ahead_t;
+  -- data_w writes slot 0 (the previous row's last column's write, which the
+  -- next row's column 0 takes as it lands).
+  signal data_w0    : std_logic;
+  signal spare_w0   : std_logic;
   -- The reader's column is in slot 0: its run is the first of the row, so
   -- the first of its class.
   signal r_slot0    : std_logic;
-  -- The data table's slot read last, and what was written to it since the
-  -- read.
-  signal watch      : slot_t;
-  signal data_fwd_v : std_logic;
-  signal data_fwd   : key_t;
-  signal cur_data   : key_t;
+
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
   -- read and the row being written are never in the same bank.
@@ -440,7 +449,7 @@ begin
   -- The bit tables are read at the row memory's column, two ahead of the
   -- reader; in its row's last two columns that is slot 0 of the next row,
   -- whose head bit is never read (r_slot0).
-  bits_ra <= slot_of(r_ahead);
+  ahead_slot <= slot_of(r_ahead);
   f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
@@ -449,22 +458,17 @@ begin
     row_re    <= '0';
     row_next0 <= '0';
     row_ra    <= resize(r_ahead, row_ra'length);
-    slot_re   <= '0';
-    slot_ra   <= slot_of(r_next);
 
     if rstep = '1' then
       -- A flush does not read past its row.
-      row_re  <= lock or to_sl(r_ahead >= 2);
-      slot_re <= '1';
+      row_re <= lock or to_sl(r_ahead >= 2);
     elsif f_prime = '1' or prime_st /= 0 then
       row_re <= '1';
       if (f_prime = '1' and px_eol = '0') or prime_st = 1 then
         row_ra    <= (others => '0');
         row_next0 <= '1';
       else
-        row_ra  <= to_unsigned(1, row_ra'length);
-        slot_re <= '1';
-        slot_ra <= (others => '0');
+        row_ra <= to_unsigned(1, row_ra'length);
       end if;
     end if;
 
@@ -481,23 +485,6 @@ begin
     end if;
 
   end process reads;
-
-  -- The slot read last, with writes to it since (or in the same clock, or
-  -- waiting in the spare register) first.
-  forward : process (all) is
-  begin
-
-    if data_w.en = '1' and data_w.addr = watch then
-      cur_data <= data_w.data;
-    elsif data_spare.en = '1' and data_spare.addr = watch then
-      cur_data <= data_spare.data;
-    elsif data_fwd_v = '1' then
-      cur_data <= data_fwd;
-    else
-      cur_data <= unsigned(data_rd);
-    end if;
-
-  end process forward;
 
   step : process (clk) is
 
@@ -536,6 +523,7 @@ begin
     variable run_head   : std_logic;
     variable run_last   : std_logic;
     variable last_now   : std_logic;
+    variable data_now   : key_t;
     variable cur_ends   : boolean;
     variable ended      : entry_t; -- the current run's class, when it ends alone
 
@@ -649,24 +637,34 @@ begin
       -- needs it, as a run that starts at column 0 cannot end there.
       p_start  := rstep = '1' and p0 = '1' and pm = '0';
       p_end    := rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol));
-      run_head := head_pipe.bit2 or r_slot0;
-      last_now := last_pipe.bit2;
-      if last_w.en = '1' and last_w.addr = last_pipe.addr2 then
+      run_head := head_ahead.word2(0) or r_slot0;
+      last_now := last_ahead.word2(0);
+      if last_w.en = '1' and last_w.addr = last_ahead.addr2 then
         last_now := last_w.data;
       end if;
       run_last := top.last;
       if p_start then
-        run_last := last_pipe.bit2;
+        run_last := last_ahead.word2(0);
+      end if;
+      -- A key landing now is the previous row's last (slot 0, for column 0):
+      -- flagged a clock ahead (data_w0) to keep the compare off the key path.
+      data_now := unsigned(data_ahead.word2);
+      if data_w.en = '1' and data_w0 = '1' and rcol = 0 then
+        data_now := data_w.data;
       end if;
 
       -- synthesis translate_off
       assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
-                  head_w.addr = head_pipe.addr2)
+                  head_w.addr = head_ahead.addr2)
         report "fastnms_nms_region: a head bit written as the reader takes it"
         severity failure;
-      assert not (p_start and last_w.en = '1' and last_w.addr = last_pipe.addr2 and
+      assert not (p_start and last_w.en = '1' and last_w.addr = last_ahead.addr2 and
                   (rcol /= 0 or p_end))
         report "fastnms_nms_region: a last bit written as the reader takes it"
+        severity failure;
+      assert not (p_start and run_head = '1' and data_w.en = '1' and
+                  (data_w.addr & '0') = data_ahead.addr2 and (rcol /= 0 or data_w0 = '0'))
+        report "fastnms_nms_region: a key written as the reader takes it"
         severity failure;
       -- synthesis translate_on
 
@@ -696,7 +694,7 @@ begin
             head => NONE,
             tail => NONE,
             merged => '0',
-            key => cur_data
+            key => data_now
           );
           v_depth  := v_depth + 1;
           pushed   := true;
@@ -847,8 +845,12 @@ begin
       if cstep = '1' and c_eol then
         cur_bank <= not cur_bank;
       end if;
-      head_pipe <= bit_pipe_next(head_pipe, head_w, rstep, bits_ra & r_bank, head_rd(0));
-      last_pipe <= bit_pipe_next(last_pipe, last_w, rstep, bits_ra & '0', last_rd(0));
+      data_ahead <= ahead_next(data_ahead, data_w.en, data_w.addr & '0', word_t(data_w.data),
+                               rstep, ahead_slot & '0', data_rd);
+      head_ahead <= ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
+                               rstep, ahead_slot & r_bank, word(head_rd(0)));
+      last_ahead <= ahead_next(last_ahead, last_w.en, last_w.addr, word(last_w.data),
+                               rstep, ahead_slot & '0', word(last_rd(0)));
       if rstep = '1' and r_last = '1' then
         r_bank <= not r_bank;
       end if;
@@ -942,10 +944,13 @@ begin
       -- writes nothing).
       if data_spare.en = '1' then
         data_w        <= data_spare;
+        data_w0       <= spare_w0;
         data_spare.en <= '0';
       else
         data_w     <= dw1;
+        data_w0    <= to_sl(dw1.addr = 0);
         data_spare <= dw2;
+        spare_w0   <= to_sl(dw2.addr = 0);
       end if;
       if head_spare.en = '1' then
         head_w     <= head_spare;
@@ -968,18 +973,6 @@ begin
         report "fastnms_nms_region: table writes on consecutive clocks"
         severity failure;
       -- synthesis translate_on
-
-      -- Forwarding register: a write to the slot read last, after the read.
-      if slot_re = '1' then
-        watch      <= slot_ra;
-        data_fwd_v <= data_w.en and to_sl(data_w.addr = slot_ra);
-        data_fwd   <= data_w.data;
-      else
-        if data_w.en = '1' and data_w.addr = watch then
-          data_fwd_v <= '1';
-          data_fwd   <= data_w.data;
-        end if;
-      end if;
 
       -- Records: a closed region, or the end-of-frame beat in a clock
       -- without one.
@@ -1038,9 +1031,9 @@ begin
         head_spare    <= NO_BIT_WRITE;
         last_w        <= NO_BIT_WRITE;
         last_spare    <= NO_BIT_WRITE;
-        data_fwd_v    <= '0';
-        head_pipe     <= BIT_PIPE_RESET;
-        last_pipe     <= BIT_PIPE_RESET;
+        data_ahead    <= AHEAD_RESET;
+        head_ahead    <= AHEAD_RESET;
+        last_ahead    <= AHEAD_RESET;
         r_slot0       <= '1';
         cur_bank      <= '0';
         r_bank        <= '0';
@@ -1074,8 +1067,8 @@ begin
       wr_en   => data_w.en,
       wr_addr => resize(data_w.addr, clog2(SLOTS)),
       wr_data => std_logic_vector(data_w.data),
-      rd_en   => slot_re,
-      rd_addr => resize(slot_ra, clog2(SLOTS)),
+      rd_en   => rstep,
+      rd_addr => resize(ahead_slot, clog2(SLOTS)),
       rd_data => data_rd
     );
 
@@ -1092,7 +1085,7 @@ begin
       wr_addr => resize(head_w.addr, clog2(2 * SLOTS)),
       wr_data => (0 => head_w.data),
       rd_en   => rstep,
-      rd_addr => resize(bits_ra & r_bank, clog2(2 * SLOTS)),
+      rd_addr => resize(ahead_slot & r_bank, clog2(2 * SLOTS)),
       rd_data => head_rd
     );
 
@@ -1108,7 +1101,7 @@ begin
       wr_addr => resize(last_w.addr(SB downto 1), clog2(SLOTS)),
       wr_data => (0 => last_w.data),
       rd_en   => rstep,
-      rd_addr => resize(bits_ra, clog2(SLOTS)),
+      rd_addr => resize(ahead_slot, clog2(SLOTS)),
       rd_data => last_rd
     );
 
