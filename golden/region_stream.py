@@ -297,12 +297,14 @@ class RegionStream:
                 f, y, x, w, h, s = pixels[i]
                 if y >= 1:  # needs the reader, in lock-step
                     go = flush is None and queued is None
-                else:  # no previous row; never overtakes the previous frame's flush
-                    # (its last column writes the slot of column x + 1 of a wider flush)
-                    upto = x + 1 if x == w - 1 else x
+                else:  # no previous row: steps with the previous frame's flush, which
+                    # started first, so never overtakes it; its last column waits for the
+                    # flush's last (it writes the slot of column x + 1 of a wider flush)
                     go = queued is None and (
-                        flush is None or upto <= flushed_past or flushed_past == flush[2] - 1
+                        flush is None
+                        or (flushed_past >= 0 and (x < w - 1 or flushed_past == flush[2] - 1))
                     )
+                    assert not (go and flush is not None and x > flushed_past), "overtaken"
                 if go:
                     row = bits[(f, y)]
                     prev = None

@@ -366,7 +366,8 @@ architecture rtl of fastnms_nms_region is
   signal cstep     : std_logic;
   signal lock      : std_logic;
   signal rstep     : std_logic;
-  signal r_last    : std_logic;
+  signal r_last    : std_logic; -- r_ahead = 1, predicted
+  signal checks_on : boolean;   -- false until the first reset: the invariants hold from then on
   signal r_next    : unsigned(XB - 1 downto 0);
   signal f_prime   : std_logic;
   signal row_next0 : std_logic; -- this clock reads the next row's column 0
@@ -408,8 +409,9 @@ begin
 
   -- The flush steps whenever the record FIFO has room. The current row steps
   -- with room too; rows >= 1 need the reader free and primed; a first row
-  -- never overtakes the flush (its last column writes the slot of the next
-  -- column, which a wider flush still reads).
+  -- steps with the flush, so it never overtakes it, and its last column
+  -- waits for the flush's last (it writes the slot of the next column, which
+  -- a wider flush still reads).
   flush_go <= flushing and rec_room;
 
   current_row_may_step : process (all) is
@@ -420,7 +422,9 @@ begin
         cur_go <= '0';
       elsif flushing = '0' then
         cur_go <= rec_room;
-      elsif cx < rcol or (cx = rcol and (px_eol = '0' or r_last = '1')) then
+      elsif px_eol = '0' or r_last = '1' then
+        -- In step with the flush, which started first and steps whenever
+        -- the row can: the row stays at or behind it (asserted below).
         cur_go <= rec_room;
       else
         cur_go <= '0';
@@ -440,7 +444,6 @@ begin
   cstep     <= cur_go and px_valid;
   lock      <= cstep and not first_row;
   rstep     <= lock or flush_go;
-  r_last    <= to_sl(r_ahead = 1);
   r_next    <= (others => '0') when r_last = '1' else
                rcol + 1;
   -- A first row reads the next row's first two columns in its last two (the
@@ -626,6 +629,15 @@ begin
       pix   := px_score & not cy & not cx;
 
       -- synthesis translate_off
+      if rst = '1' then
+        checks_on <= true;
+      end if;
+      assert not checks_on or rst = '1' or r_last = to_sl(r_ahead = 1)
+        report "fastnms_nms_region: r_last out of step"
+        severity failure;
+      assert not (cstep = '1' and first_row = '1' and flushing = '1' and cx > rcol)
+        report "fastnms_nms_region: a first row overtaking the flush"
+        severity failure;
       assert not (lock = '1' and rcol /= cx)
         report "fastnms_nms_region: reader and current row out of step"
         severity failure;
@@ -864,6 +876,8 @@ begin
         else
           r_ahead <= r_ahead + 1;
         end if;
+        -- Rows are at least 3 wide: after r_ahead = 0 comes 1.
+        r_last <= to_sl(r_ahead = 0);
         p0 <= row_rd(0);
         if r_last = '1' then
           pm <= '0';
@@ -877,6 +891,7 @@ begin
         rcol      <= (others => '0');
         r_slot0   <= '1';
         r_ahead   <= to_unsigned(2, XB);
+        r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
       end if;
 
@@ -902,6 +917,7 @@ begin
       if flush_ends then
         -- The next reader row is a lock-step row of the current frame.
         r_ahead   <= to_unsigned(2, XB);
+        r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
       end if;
       if lock = '1' and c_eol then
@@ -923,6 +939,7 @@ begin
         if (flushing = '0' or flush_ends) and v_primed = '1' then
           flushing  <= '1';
           r_ahead   <= to_unsigned(2, XB);
+          r_last    <= '0';
           r_lastcol <= resize(cw - 1, XB);
         else
           flush_pending <= '1';
@@ -932,6 +949,7 @@ begin
         flushing      <= '1';
         flush_pending <= '0';
         r_ahead       <= to_unsigned(2, XB);
+        r_last        <= '0';
         r_lastcol     <= resize(flush_w - 1, XB);
       end if;
       if flushing = '0' and primed = '0' and prime_st = 0 and cstep = '0' and
@@ -1011,6 +1029,7 @@ begin
         frame_start   <= '1';
         rcol          <= (others => '0');
         r_ahead       <= to_unsigned(2, XB);
+        r_last        <= '0';
         r_lastcol     <= (others => '0');
         p0            <= '0';
         pm            <= '0';
