@@ -112,19 +112,16 @@ architecture rtl of fastnms_nms_region is
 
   end function unpack;
 
-  function best (a : key_t; b : key_t) return key_t is
+  function score_of (k : key_t) return unsigned is
   begin
 
-    if a >= b then
-      return a;
-    end if;
+    return k(KB - 1 downto XB + YB);
 
-    return b;
+  end function score_of;
 
-  end function best;
-
-  -- The best of a and, when used, b and c: three comparisons side by side
-  -- rather than two in a row.
+  -- The best of a and, when used, b and the pixel c: three comparisons side
+  -- by side rather than two in a row. The pixel comes after every pixel of a
+  -- and b in raster order, so it wins only with a higher score.
   function best3 (a : key_t; use_b : boolean; b : key_t; use_c : boolean; c : key_t)
     return key_t is
     variable ab : boolean;
@@ -133,8 +130,8 @@ architecture rtl of fastnms_nms_region is
   begin
 
     ab := a >= b;
-    ac := a >= c;
-    bc := b >= c;
+    ac := score_of(a) >= score_of(c);
+    bc := score_of(b) >= score_of(c);
 
     if use_b and use_c then
       if ab and ac then
@@ -756,7 +753,10 @@ begin
         if v_att = '1' then
           pix_to_top := true;
         else
-          v_key := best(v_key, pix);
+          -- The pixel is the run's latest: it wins with a higher score only.
+          if px_score > score_of(v_key) then
+            v_key := pix;
+          end if;
         end if;
       end if;
       v_top.key := best3(v_top.key, merge_en, merge_key, pix_to_top, pix);
