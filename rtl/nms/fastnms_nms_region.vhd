@@ -119,19 +119,20 @@ architecture rtl of fastnms_nms_region is
 
   end function score_of;
 
-  -- The best of a and, when used, b and the pixel c: three comparisons side
-  -- by side rather than two in a row. The pixel comes after every pixel of a
-  -- and b in raster order, so it wins only with a higher score.
-  function best3 (a : key_t; use_b : boolean; b : key_t; use_c : boolean; c : key_t)
-    return key_t is
-    variable ab : boolean;
-    variable ac : boolean;
-    variable bc : boolean;
+  -- The best of a and, when used, b and c, from their comparisons ab
+  -- (a >= b), ac and bc, which the caller makes on registers, every
+  -- candidate pair side by side, so that the step's control only selects.
+  function best3 (
+    a     : key_t;
+    use_b : boolean;
+    b     : key_t;
+    use_c : boolean;
+    c     : key_t;
+    ab    : boolean;
+    ac    : boolean;
+    bc    : boolean
+  ) return key_t is
   begin
-
-    ab := a >= b;
-    ac := score_of(a) >= score_of(c);
-    bc := score_of(b) >= score_of(c);
 
     if use_b and use_c then
       if ab and ac then
@@ -332,6 +333,7 @@ architecture rtl of fastnms_nms_region is
   -- The reader's column is in slot 0: its run is the first of the row, so
   -- the first of its class.
   signal r_slot0    : std_logic;
+  signal r_col0     : std_logic; -- rcol = 0
 
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
@@ -515,6 +517,17 @@ begin
     variable merge_en   : boolean; -- the top's class takes merge_key ...
     variable merge_key  : key_t;
     variable pix_to_top : boolean; -- ... and the pixel
+    variable merge_ge   : boolean; -- its key >= merge_key
+    variable merge_pix  : boolean; -- merge_key >= the pixel
+    variable run_starts : boolean;
+    -- Key comparisons on registers: the top's key (top), the key of a pushed
+    -- class (push), the current class's (cur), the pixel's score (pix).
+    variable top_ge_cur  : boolean;
+    variable push_ge_cur : boolean;
+    variable push_ge_top : boolean;
+    variable top_ge_pix  : boolean;
+    variable push_ge_pix : boolean;
+    variable cur_ge_pix  : boolean;
     variable flush_ends : boolean;
     variable eof_step   : boolean;
     variable v_primed   : std_logic;
@@ -629,8 +642,10 @@ begin
       if rst = '1' then
         checks_on <= true;
       end if;
-      assert not checks_on or rst = '1' or r_last = to_sl(r_ahead = 1)
-        report "fastnms_nms_region: r_last out of step"
+      assert not checks_on or rst = '1' or
+             (r_last = to_sl(r_ahead = 1) and r_col0 = to_sl(rcol = 0) and
+              r_slot0 = to_sl(rcol < 2))
+        report "fastnms_nms_region: r_last, r_col0 or r_slot0 out of step"
         severity failure;
       assert not (cstep = '1' and first_row = '1' and flushing = '1' and cx > rcol)
         report "fastnms_nms_region: a first row overtaking the flush"
@@ -658,9 +673,19 @@ begin
       -- A key landing now is the previous row's last (slot 0, for column 0):
       -- flagged a clock ahead (data_w0) to keep the compare off the key path.
       data_now := unsigned(data_ahead.word2);
-      if data_w.en = '1' and data_w0 = '1' and rcol = 0 then
+      if data_w.en = '1' and data_w0 = '1' and r_col0 = '1' then
         data_now := data_w.data;
       end if;
+      top_ge_cur  := top.key >= c_key;
+      push_ge_cur := data_now >= c_key;
+      push_ge_top := data_now >= top.key;
+      -- The pixel comes after every pixel of a class in raster order, so it
+      -- wins only with a higher score.
+      top_ge_pix  := score_of(top.key) >= px_score;
+      push_ge_pix := score_of(data_now) >= px_score;
+      cur_ge_pix  := score_of(c_key) >= px_score;
+      merge_ge    := false;
+      merge_pix   := false;
 
       -- synthesis translate_off
       assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
@@ -711,7 +736,8 @@ begin
       end if;
 
       -- 2. A current-row run starts: a class of its own for now.
-      if cstep = '1' and c0 = '1' and cm = '0' then
+      run_starts := cstep = '1' and c0 = '1' and cm = '0';
+      if run_starts then
         v_key  := pix;
         v_head := slot_of(cx);
         v_tail := slot_of(cx);
@@ -737,11 +763,19 @@ begin
           v_top.tail := v_tail;
           merge_en   := true;
           merge_key  := v_key;
-          v_att      := '1';
+          if run_starts then -- the class is the pixel
+            merge_ge := (pushed and push_ge_pix) or (not pushed and top_ge_pix);
+          else
+            merge_ge  := (pushed and push_ge_cur) or (not pushed and top_ge_cur);
+            merge_pix := cur_ge_pix;
+          end if;
+          v_att := '1';
         elsif pushed then
           -- The current run's class is the entry below: the new entry takes it over.
           merge_en     := true;
           merge_key    := v_second.key;
+          merge_ge     := push_ge_top;
+          merge_pix    := top_ge_pix;
           v_top.head   := v_second.head;
           v_top.tail   := v_second.tail;
           v_top.merged := '1';
@@ -753,13 +787,13 @@ begin
         if v_att = '1' then
           pix_to_top := true;
         else
-          -- The pixel is the run's latest: it wins with a higher score only.
-          if px_score > score_of(v_key) then
+          if not cur_ge_pix then
             v_key := pix;
           end if;
         end if;
       end if;
-      v_top.key := best3(v_top.key, merge_en, merge_key, pix_to_top, pix);
+      v_top.key := best3(v_top.key, merge_en, merge_key, pix_to_top, pix, merge_ge,
+                         (pushed and push_ge_pix) or (not pushed and top_ge_pix), merge_pix);
 
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
       -- Its finalize is written after a pop's (below): at a row's last column
@@ -870,7 +904,8 @@ begin
       -- The reader's next column, and its prefetched bits.
       if rstep = '1' then
         rcol    <= r_next;
-        r_slot0 <= r_last or to_sl(rcol = 0);
+        r_slot0 <= r_last or r_col0;
+        r_col0  <= r_last;
         if r_ahead = r_lastcol then
           r_ahead <= (others => '0');
         else
@@ -890,6 +925,7 @@ begin
         pm        <= '0';
         rcol      <= (others => '0');
         r_slot0   <= '1';
+        r_col0    <= '1';
         r_ahead   <= to_unsigned(2, XB);
         r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
@@ -1054,6 +1090,7 @@ begin
         head_ahead    <= AHEAD_RESET;
         last_ahead    <= AHEAD_RESET;
         r_slot0       <= '1';
+        r_col0        <= '1';
         cur_bank      <= '0';
         r_bank        <= '0';
       end if;
