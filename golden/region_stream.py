@@ -4,9 +4,10 @@ It holds exactly the state the RTL holds and changes it with the same operations
 per step: the previous row's corner bits (row memory), a data table and two bit tables indexed
 by run slot (start column // 2), a stack of the previous row's open classes, and the current
 run's class. The bit tables say, per run, whether it is the first run of its class in its row
-("head", kept per row parity) and whether it is the last ("last"). Its records, in closing order, must equal `nms.nms_region` as sets; its asserts
-are the design's invariants (the stack discipline, one access per memory port per step, every
-table word read in the row after the one that wrote it). docs/fastnms_nms_region.md explains
+("head", kept per row parity) and whether it is the last ("last"). Its records, in closing
+order, must equal `nms.nms_region` as sets; its asserts are the design's invariants (the stack
+discipline, one access per memory port per step, every table word read in the row after the
+one that wrote it). docs/fastnms_nms_region.md explains
 the algorithm; this file is its executable form.
 
 Why no content needs a stall: the classes of one row's runs never cross (two regions cannot

@@ -204,7 +204,7 @@ architecture rtl of fastnms_nms_region is
   (
     addr1 => (others => '0'),
     fwd_v => '0',
-    fwd => (others => '0'),
+    fwd   => (others => '0'),
     addr2 => (others => '0'),
     word2 => (others => '0')
   );
@@ -224,6 +224,7 @@ architecture rtl of fastnms_nms_region is
   begin
 
     n := p;
+
     if step = '1' then
       n.addr2 := p.addr1;
       if w_en = '1' and w_addr = p.addr1 then
@@ -245,6 +246,7 @@ architecture rtl of fastnms_nms_region is
         n.fwd   := w_data;
       end if;
     end if;
+
     return n;
 
   end function ahead_next;
@@ -316,7 +318,7 @@ architecture rtl of fastnms_nms_region is
   signal data_w     : data_write_t;
   signal data_spare : data_write_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
-  signal ahead_slot    : slot_t;
+  signal ahead_slot : slot_t;
   signal head_w     : bit_write_t;
   signal head_spare : bit_write_t;
   signal head_rd    : std_logic_vector(0 downto 0);
@@ -328,24 +330,24 @@ architecture rtl of fastnms_nms_region is
   signal last_ahead : ahead_t;
   -- data_w writes slot 0 (the previous row's last column's write, which the
   -- next row's column 0 takes as it lands).
-  signal data_w0    : std_logic;
-  signal spare_w0   : std_logic;
+  signal data_w0  : std_logic;
+  signal spare_w0 : std_logic;
   -- The reader's column is in slot 0: its run is the first of the row, so
   -- the first of its class.
-  signal r_slot0    : std_logic;
-  signal r_col0     : std_logic; -- rcol = 0
+  signal r_slot0 : std_logic;
+  signal r_col0  : std_logic; -- rcol = 0
 
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
   -- read and the row being written are never in the same bank.
-  signal cur_bank   : std_logic;
-  signal r_bank     : std_logic;
-  signal stack_we   : std_logic;
-  signal stack_wa   : unsigned(clog2(STACK_WORDS) - 1 downto 0);
-  signal stack_wd   : std_logic_vector(ENTRY_BITS - 1 downto 0);
-  signal stack_re   : std_logic;
-  signal stack_ra   : unsigned(clog2(STACK_WORDS) - 1 downto 0);
-  signal stack_rd   : std_logic_vector(ENTRY_BITS - 1 downto 0);
+  signal cur_bank : std_logic;
+  signal r_bank   : std_logic;
+  signal stack_we : std_logic;
+  signal stack_wa : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_wd : std_logic_vector(ENTRY_BITS - 1 downto 0);
+  signal stack_re : std_logic;
+  signal stack_ra : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal stack_rd : std_logic_vector(ENTRY_BITS - 1 downto 0);
 
   -- Records.
   signal rec_valid   : std_logic;
@@ -452,7 +454,7 @@ begin
   -- reader; in its row's last two columns that is slot 0 of the next row,
   -- whose head bit is never read (r_slot0).
   ahead_slot <= slot_of(r_ahead);
-  f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
+  f_prime    <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
   begin
@@ -514,11 +516,11 @@ begin
     variable emit       : boolean;
     variable emit_key   : key_t;
     variable touch      : boolean;
-    variable merge_en   : boolean; -- the top's class takes merge_key ...
+    variable merge_en   : boolean;  -- the top's class takes merge_key ...
     variable merge_key  : key_t;
-    variable pix_to_top : boolean; -- ... and the pixel
-    variable merge_ge   : boolean; -- its key >= merge_key
-    variable merge_pix  : boolean; -- merge_key >= the pixel
+    variable pix_to_top : boolean;  -- ... and the pixel
+    variable merge_ge   : boolean;  -- its key >= merge_key
+    variable merge_pix  : boolean;  -- merge_key >= the pixel
     variable run_starts : boolean;
     -- Key comparisons on registers: the top's key (top), the key of a pushed
     -- class (push), the current class's (cur), the pixel's score (pix).
@@ -528,17 +530,17 @@ begin
     variable top_ge_pix  : boolean;
     variable push_ge_pix : boolean;
     variable cur_ge_pix  : boolean;
-    variable flush_ends : boolean;
-    variable eof_step   : boolean;
-    variable v_primed   : std_logic;
-    variable p_start    : boolean;
-    variable p_end      : boolean;
-    variable run_head   : std_logic;
-    variable run_last   : std_logic;
-    variable last_now   : std_logic;
-    variable data_now   : key_t;
-    variable cur_ends   : boolean;
-    variable ended      : entry_t; -- the current run's class, when it ends alone
+    variable flush_ends  : boolean;
+    variable eof_step    : boolean;
+    variable v_primed    : std_logic;
+    variable p_start     : boolean;
+    variable p_end       : boolean;
+    variable run_head    : std_logic;
+    variable run_last    : std_logic;
+    variable last_now    : std_logic;
+    variable data_now    : key_t;
+    variable cur_ends    : boolean;
+    variable ended       : entry_t; -- the current run's class, when it ends alone
 
     procedure add_data_write (
       addr : slot_t;
@@ -555,6 +557,7 @@ begin
     end procedure add_data_write;
 
     -- The current row's bank of the head table.
+
     procedure add_head_write (
       slot : slot_t;
       data : std_logic
@@ -585,6 +588,7 @@ begin
 
     -- The class has all its current-row runs: its key waits at its first
     -- run's slot, which is marked first, and its latest run is marked last.
+
     procedure finalize (
       head : slot_t;
       tail : slot_t;
@@ -700,16 +704,14 @@ begin
                   (data_w.addr & '0') = data_ahead.addr2 and (rcol /= 0 or data_w0 = '0'))
         report "fastnms_nms_region: a key written as the reader takes it"
         severity failure;
+      assert not (p_start and run_head = '0' and v_depth = 0)
+        report "fastnms_nms_region: a continuing run without an open class"
+        severity failure;
       -- synthesis translate_on
 
       -- 1. A previous-row run starts at rcol: a run that is not its class's
       -- first continues the top's class (classes nest), a first run pushes.
       if p_start then
-        -- synthesis translate_off
-        assert not (run_head = '0' and v_depth = 0)
-          report "fastnms_nms_region: a continuing run without an open class"
-          severity failure;
-        -- synthesis translate_on
         if run_head = '0' then
           v_top.last := last_now;
         else
@@ -913,7 +915,7 @@ begin
         end if;
         -- Rows are at least 3 wide: after r_ahead = 0 comes 1.
         r_last <= to_sl(r_ahead = 0);
-        p0 <= row_rd(0);
+        p0     <= row_rd(0);
         if r_last = '1' then
           pm <= '0';
         else
