@@ -66,16 +66,15 @@ architecture rtl of fastnms_nms_region is
   -- the better pixel (higher score, then earlier in raster order).
   constant KB : positive := SCORE_BITS + YB + XB;
   -- Slots: one per two columns (two runs of a row start at least two apart).
-  -- SB holds every slot and NONE, which is none of them.
-  constant SLOTS : positive                  := (MAX_WIDTH + 1) / 2;
-  constant SB    : positive                  := bits_for(SLOTS);
-  constant NONE  : unsigned(SB - 1 downto 0) := (others => '1');
+  -- SB holds every slot.
+  constant SLOTS : positive := (MAX_WIDTH + 1) / 2;
+  constant SB    : positive := bits_for(SLOTS);
   -- Open classes of the previous row at once (golden/region_stream.py,
   -- stack_depth): the top two are registers, the others in a RAM.
   constant STACK_DEPTH : positive := (MAX_WIDTH + 1) / 4 + 1;
   constant STACK_WORDS : positive := maximum(STACK_DEPTH - 2, 1);
   constant DB          : positive := bits_for(STACK_DEPTH);
-  constant ENTRY_BITS  : positive := 2 * SB + 2 + KB;
+  constant ENTRY_BITS  : positive := 2 * SB + 3 + KB;
   constant OUT_BITS    : positive := 1 + XB + YB + SCORE_BITS;
 
   subtype slot_t is unsigned(SB - 1 downto 0);
@@ -85,7 +84,8 @@ architecture rtl of fastnms_nms_region is
   -- A previous-row class on the stack.
   type entry_t is record
     last   : std_logic; -- its run under the reader is its last in the previous row
-    head   : slot_t;    -- slot of its first run in the current row, NONE if none yet
+    runs   : std_logic; -- it has runs in the current row (head and tail are valid)
+    head   : slot_t;    -- slot of its first run in the current row
     tail   : slot_t;    -- slot of its latest run in the current row
     merged : std_logic; -- also holds the class of the entry below
     key    : key_t;     -- best pixel (valid unless merged into the entry above)
@@ -94,7 +94,7 @@ architecture rtl of fastnms_nms_region is
   function pack (e : entry_t) return std_logic_vector is
   begin
 
-    return e.last & std_logic_vector(e.head) & std_logic_vector(e.tail) & e.merged &
+    return e.last & e.runs & std_logic_vector(e.head) & std_logic_vector(e.tail) & e.merged &
            std_logic_vector(e.key);
 
   end function pack;
@@ -104,8 +104,9 @@ architecture rtl of fastnms_nms_region is
   begin
 
     e.last   := v(ENTRY_BITS - 1);
-    e.head   := unsigned(v(ENTRY_BITS - 2 downto ENTRY_BITS - 1 - SB));
-    e.tail   := unsigned(v(ENTRY_BITS - 2 - SB downto KB + 1));
+    e.runs   := v(ENTRY_BITS - 2);
+    e.head   := unsigned(v(ENTRY_BITS - 3 downto ENTRY_BITS - 2 - SB));
+    e.tail   := unsigned(v(ENTRY_BITS - 3 - SB downto KB + 1));
     e.merged := v(KB);
     e.key    := unsigned(v(KB - 1 downto 0));
     return e;
@@ -727,8 +728,9 @@ begin
           v_top    :=
           (
             last => last_now,
-            head => NONE,
-            tail => NONE,
+            runs => '0',
+            head => (others => '0'),
+            tail => (others => '0'),
             merged => '0',
             key => data_now
           );
@@ -754,7 +756,8 @@ begin
       end if;
       if touch then
         if v_att = '0' then
-          if v_top.head = NONE then
+          if v_top.runs = '0' then
+            v_top.runs := '1';
             v_top.head := v_head;
           else
             -- The class's latest run is no longer its last, this run's class
@@ -778,6 +781,7 @@ begin
           merge_key    := v_second.key;
           merge_ge     := push_ge_top;
           merge_pix    := top_ge_pix;
+          v_top.runs   := v_second.runs;
           v_top.head   := v_second.head;
           v_top.tail   := v_second.tail;
           v_top.merged := '1';
@@ -802,7 +806,7 @@ begin
       -- the second write waits a clock in the spare register, and the pop's
       -- can be to slot 0, which the next row's column 1 reads then.
       cur_ends := false;
-      ended    := (last => '0', head => v_head, tail => v_tail, merged => '0', key => v_key);
+      ended    := (last => '0', runs => '1', head => v_head, tail => v_tail, merged => '0', key => v_key);
       if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
         cur_ends := v_att = '0';
         v_act    := '0';
@@ -822,6 +826,7 @@ begin
         end if;
         if popped.merged = '1' then
           v_top.key  := popped.key;
+          v_top.runs := popped.runs;
           v_top.head := popped.head;
           v_top.tail := popped.tail;
         elsif v_act = '1' and v_att = '1' then
@@ -829,7 +834,7 @@ begin
           v_head := popped.head;
           v_tail := popped.tail;
           v_att  := '0';
-        elsif popped.head /= NONE then
+        elsif popped.runs = '1' then
           finalize(popped.head, popped.tail, popped.key);
         else
           emit     := true;
