@@ -122,12 +122,13 @@ def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
     stack_words = max((max_width + 1) // 4 + 1 - 2, 1)
     rows = [
         ("row memory (the previous row's corner bits)", max_width, 1),
-        ("link table (next run of the class, by slot)", slots, slot_bits),
+        ("head table (first run of its class?, by row parity and slot; LUT RAM)", 2 * slots, 1),
+        ("last table (last run of its class?, by slot; LUT RAM)", slots, 1),
         ("data table (best key of the class, by slot; the paper's RAM score)", slots, key_bits),
         (
             "stack of open classes (below its two registers)",
             stack_words,
-            3 * slot_bits + 1 + key_bits,
+            2 * slot_bits + 3 + key_bits,
         ),
         ("record FIFO (LUT RAM)", 8, 1 + x_bits + y_bits + score_bits),
     ]

@@ -84,12 +84,12 @@ REASONS = {
     ),
     "levels": (
         "The region NMS does a whole column of the connected-components step in one "
-        "clock (the continuation compare, the stack's top entries, a three-way key "
-        "comparison and the pop's outcome in one path), so yosys maps it into many "
-        "more than 4 levels, and "
+        "clock (from registers, but the step enable, the stack's and the current "
+        "class's decisions, the selection of the winning key and the pop's routing "
+        "of it are in one path), so yosys maps it into many more than 4 levels, and "
         "every configuration that contains it inherits that depth "
-        "(fastnms_nms_region.md, *Limits*: without its key comparisons its "
-        "control alone maps into 12 levels). "
+        "(fastnms_nms_region.md, *Limits*: with its key comparisons made constant "
+        "its control alone still maps into 11 levels). "
         "Without the region NMS the excess is one or two levels, and the same RTL "
         "maps to 4 levels in one netlist and to 5 or 6 in another (the window "
         "generator: 4 at MAX_WIDTH 3840 at every PPC, 5 at 1920x1080; the rows "
@@ -732,9 +732,9 @@ def bram_note(summary: list[dict]) -> list[str]:
         f"Block RAM of the region configurations: {top['bram18_equiv']} BRAM18-equivalents "
         f"for `{top['config']}` against the paper's {PAPER['bram18_equiv']}. The region NMS "
         f"alone takes {block['bram18_equiv']} ({block.get('bram18', 0)} RAMB18 + "
-        f"{block.get('bram36', 0)} RAMB36) for its link table, data table and stack, plus "
-        "LUT RAM for its row memory (one bit per column) and its 8-record FIFO; the bench "
-        "section lists their bits.",
+        f"{block.get('bram36', 0)} RAMB36) for its data table and stack, plus LUT RAM for "
+        "its one-bit memories (the row memory, the head and last tables) and its 8-record "
+        "FIFO; the bench section lists their bits.",
         "",
     ]
 
@@ -912,7 +912,7 @@ def bench_section(bench: dict) -> str:
         out.append(
             f"{ratio:.1f} times the paper's formula, which counts only the region maxima "
             "(the data table holds the same; the stack holds the open classes' maxima a "
-            "second time, and the link table replaces the paper's label line); "
+            "second time, and the head and last bits replace the paper's label line); "
             f"{mem['total_bits'] / mem['fifo5_bits']:.2f} times a 5-line FIFO."
         )
         out.append("")

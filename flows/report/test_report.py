@@ -107,7 +107,7 @@ def check_report(summary, info, tmp_path):
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
     assert "### 3840x2160 at 4 pixels per clock" in both and "| 0.25000 | 2 073 604 |" in both
-    assert "| **total** |  | **75 575** |" in both
+    assert "| **total** |  | **65 023** |" in both
     # The engines' speeds and the build times.
     assert "| fast (GHDL netlist + Verilator) |" in both and "| cocotb (GHDL + cocotb) |" in both
     assert "| 14 s |" in both and "| cached |" in both
@@ -122,10 +122,11 @@ def test_region_memory_breakdown():
     RTL sizes them (worked out by hand from its generics; `make bench` renders the
     table into docs/results.md)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
-    # 960 slots of 10 bits; keys of 12 + 11 + 11 bits; 479 stack words of 3 x 10 + 1 + 34
-    # bits; 8 records of 1 + 11 + 11 + 12 bits.
-    assert [r["bits"] for r in mem["breakdown"]] == [1920, 9600, 32640, 31135, 280]
-    assert mem["total_bits"] == 75575
+    # 960 slots of 10 bits; a head bit per slot and row parity, a last bit per slot; keys
+    # of 12 + 11 + 11 bits; 479 stack words of 2 x 10 + 3 + 34 bits; 8 records of
+    # 1 + 11 + 11 + 12 bits.
+    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 32640, 27303, 280]
+    assert mem["total_bits"] == 65023
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200
 
