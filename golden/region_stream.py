@@ -23,7 +23,8 @@ input pixel; rows >= 1 step the previous row's reader in lock-step with it. Afte
 last pixel the reader "flushes" that last row alone (no current row), one column per clock,
 in parallel with the next frame's first row (which has no previous row), then emits the
 end-of-frame beat. The input waits only for the output (a full record buffer) and, when a
-frame is narrower than the one before it, for the end of the flush before its second row.
+frame is narrower than the one before it, at its first row's last pixel for the flush's last
+column.
 """
 
 from __future__ import annotations

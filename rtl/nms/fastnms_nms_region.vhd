@@ -18,7 +18,8 @@
 -- flushes that row alone, one column per clock, while the next frame's first
 -- row (which has no previous row) comes in; then the end-of-frame beat.
 -- in_ready drops only when the record FIFO has no room, and, for a frame
--- narrower than the one before it, until that frame's flush is over.
+-- narrower than the one before it, from its first row's last pixel until
+-- the flush's last column, then two PRIME clocks.
 --
 -- The input is the detector's per-pixel stream: well formed (every line
 -- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof, the
@@ -343,6 +344,7 @@ architecture rtl of fastnms_nms_region is
   -- read and the row being written are never in the same bank.
   signal cur_bank : std_logic;
   signal r_bank   : std_logic;
+  -- The stack's RAM, below its registers.
   signal stack_we : std_logic;
   signal stack_wa : unsigned(clog2(STACK_WORDS) - 1 downto 0);
   signal stack_wd : std_logic_vector(ENTRY_BITS - 1 downto 0);
@@ -451,11 +453,11 @@ begin
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
-  -- The bit tables are read at the row memory's column, two ahead of the
-  -- reader; in its row's last two columns that is slot 0 of the next row,
-  -- whose head bit is never read (r_slot0).
+  f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
+  -- The tables are read at the row memory's column, two ahead of the reader;
+  -- in its row's last two columns that is slot 0 of the next row (whose head
+  -- bit is never read: r_slot0).
   ahead_slot <= slot_of(r_ahead);
-  f_prime    <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
 
   reads : process (all) is
   begin
@@ -557,14 +559,13 @@ begin
 
     end procedure add_data_write;
 
-    -- The current row's bank of the head table.
-
     procedure add_head_write (
       slot : slot_t;
       data : std_logic
     ) is
     begin
 
+      -- In the current row's bank.
       if hw1.en = '0' then
         hw1 := (en => '1', addr => slot & cur_bank, data => data);
       else
@@ -587,9 +588,6 @@ begin
 
     end procedure add_last_write;
 
-    -- The class has all its current-row runs: its key waits at its first
-    -- run's slot, which is marked first, and its latest run is marked last.
-
     procedure finalize (
       head : slot_t;
       tail : slot_t;
@@ -597,6 +595,8 @@ begin
     ) is
     begin
 
+      -- The class has all its current-row runs: its key waits at its first
+      -- run's slot, which is marked first, and its latest run is marked last.
       add_data_write(head, key);
       add_head_write(head, '1');
       add_last_write(tail, '1');
