@@ -4,7 +4,9 @@ Each (toplevel, generics) pair gets its own build directory under build/sim, so
 generic sets never share a compiled library and pytest-xdist workers can run in
 parallel. Seeds: FASTNMS_SEED sets the seed of every test; otherwise each test
 uses a fixed seed derived from its name, so a run is reproducible. The seed is
-printed (pytest shows it on failure) and logged by the testbench.
+printed (pytest shows it on failure) and logged by the testbench. The build's
+and the simulator's output go to sim.log in the test's directory (a long run's
+log can be large); a failing test prints its path and last lines.
 """
 
 from __future__ import annotations
@@ -56,19 +58,35 @@ def run_cocotb(
     assert len(found) == 1, f"{len(found)} testbench modules {module}.py under tb/"
     dotted = ".".join(found[0].relative_to(REPO).with_suffix("").parts)
 
-    tests, failed = build_and_run(
-        toplevel,
-        dotted,
-        generics,
-        build_dir=build_dir,
-        test_dir=test_dir,
-        # GHDL run-time options go after the top-level name, where plusargs go.
-        # An RTL assertion of severity error (a broken input contract)
-        # stops the simulation, so the test fails.
-        plusargs=["--ieee-asserts=disable-at-0", "--assert-level=error"],
-        extra_env={"TB_GENERICS": repr(generics), **(env or {})},
-        seed=seed,
-        testcase=testcase,
-    )
-    assert tests > 0, f"{module}: no cocotb test ran (testcase={testcase!r})"
-    assert failed == 0, f"{module}: {failed} of {tests} cocotb tests failed (seed={seed})"
+    log = test_dir / "sim.log"
+    try:
+        tests, failed = build_and_run(
+            toplevel,
+            dotted,
+            generics,
+            build_dir=build_dir,
+            test_dir=test_dir,
+            # GHDL run-time options go after the top-level name, where plusargs go.
+            # An RTL assertion of severity error (a broken input contract)
+            # stops the simulation, so the test fails.
+            plusargs=["--ieee-asserts=disable-at-0", "--assert-level=error"],
+            extra_env={"TB_GENERICS": repr(generics), **(env or {})},
+            seed=seed,
+            testcase=testcase,
+            log_file=log,
+        )
+    finally:
+        _print_tail(log)
+    assert tests > 0, f"{module}: no cocotb test ran (testcase={testcase!r}); see {log}"
+    assert failed == 0, f"{module}: {failed} of {tests} cocotb tests failed (seed={seed}); see {log}"
+
+
+def _print_tail(log, lines: int = 200) -> None:
+    """The last lines of a simulation log, for pytest to show if the test fails."""
+    if not log.exists():
+        return
+    with open(log, "rb") as f:
+        f.seek(max(0, log.stat().st_size - 200 * lines))
+        tail = f.read().decode(errors="replace").splitlines()[-lines:]
+    print(f"--- last {len(tail)} lines of {log} ---")
+    print("\n".join(tail))

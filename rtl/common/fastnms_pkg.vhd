@@ -22,6 +22,13 @@ package fastnms_pkg is
   -- leaving the carry chains to the subtractors beside it.
   function greater (a : unsigned; b : unsigned) return std_logic;
 
+  -- The power-up value of a data register or memory word: zeros in
+  -- simulation, as FPGA flip-flops and RAM start, so that compares made every
+  -- clock on not yet written data raise no metavalue warnings; 'U' (none) in
+  -- synthesis. No logic depends on it: the fast engine simulates the netlist
+  -- from random power-up values (sim/tests/test_engines.py).
+  function sim_zeros (n : positive) return std_logic_vector;
+
 end package fastnms_pkg;
 
 package body fastnms_pkg is
@@ -85,5 +92,17 @@ package body fastnms_pkg is
     end loop;
     return gt;
   end function greater;
+
+  function sim_zeros (n : positive) return std_logic_vector is
+    variable v : std_logic_vector(n - 1 downto 0);
+  begin
+
+    -- synthesis translate_off
+    v := (others => '0');
+    -- synthesis translate_on
+
+    return v;
+
+  end function sim_zeros;
 
 end package body fastnms_pkg;

@@ -38,7 +38,8 @@ architecture rtl of fastnms_ram_sdp is
 
   type mem_t is array (0 to DEPTH - 1) of std_logic_vector(WIDTH - 1 downto 0);
 
-  signal mem      : mem_t;
+  -- Zero in simulation only (sim_zeros).
+  signal mem      : mem_t := (others => sim_zeros(WIDTH));
   signal rd_array : std_logic_vector(WIDTH - 1 downto 0);
 
   attribute ram_style        : string;

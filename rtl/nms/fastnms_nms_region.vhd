@@ -278,11 +278,13 @@ architecture rtl of fastnms_nms_region is
   signal first_row   : std_logic;
   signal frame_start : std_logic;
   signal cm          : std_logic;
-  signal c_key       : key_t;
-  signal c_head      : slot_t;
-  signal c_tail      : slot_t;
-  signal attached    : std_logic;
-  signal active      : std_logic;
+  -- (sim_zeros: the compares made every clock read c_key, top, second,
+  -- third and the tables before their first write.)
+  signal c_key    : key_t  := unsigned(sim_zeros(KB));
+  signal c_head   : slot_t := unsigned(sim_zeros(SB));
+  signal c_tail   : slot_t := unsigned(sim_zeros(SB));
+  signal attached : std_logic;
+  signal active   : std_logic;
 
   -- Reader of the previous row: its column, its row's last column, the
   -- prefetched bits (pm at rcol - 1, p0 at rcol; the row memory's output is
@@ -303,9 +305,9 @@ architecture rtl of fastnms_nms_region is
   -- Stack: top, second, and a copy of the RAM's word below them (refreshed
   -- two clocks after a pop: third_rd1, third_rd2).
   signal depth     : unsigned(DB - 1 downto 0);
-  signal top       : entry_t;
-  signal second    : entry_t;
-  signal third     : entry_t;
+  signal top       : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal second    : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal third     : entry_t := unpack(sim_zeros(ENTRY_BITS));
   signal third_rd1 : std_logic;
   signal third_rd2 : std_logic;
 
@@ -320,7 +322,7 @@ architecture rtl of fastnms_nms_region is
   signal data_w     : data_write_t;
   signal data_spare : data_write_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
-  signal ahead_slot : slot_t;
+  signal ahead_slot : slot_t := unsigned(sim_zeros(SB));
   signal head_w     : bit_write_t;
   signal head_spare : bit_write_t;
   signal head_rd    : std_logic_vector(0 downto 0);

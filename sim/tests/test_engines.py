@@ -102,7 +102,7 @@ def test_engines_four_pixels_per_clock(score: str, rng, seed):
 
 def test_engines_agree_without_pauses(rng, seed):
     """The cocotb engine without idles or stalls, on the variants whose timing
-    differs most (the region NMS holds the input on dense content)."""
+    differs most (the region NMS adds its flush pass)."""
     frames = mixed_frames(rng)
     for score, nms in [("opencv", "3x3"), ("sad", "region8")]:
         fast = run_rtl(frames, score, nms)
