@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import re
 import zlib
+from pathlib import Path
 
 from fastnms.sim.ghdl import BUILD, build_and_run
 from fastnms.sim.sources import REPO
@@ -78,10 +79,10 @@ def run_cocotb(
     finally:
         _print_tail(log)
     assert tests > 0, f"{module}: no cocotb test ran (testcase={testcase!r}); see {log}"
-    assert failed == 0, f"{module}: {failed} of {tests} cocotb tests failed (seed={seed}); see {log}"
+    assert failed == 0, f"{module}: {failed} of {tests} cocotb tests failed (seed={seed}, {log})"
 
 
-def _print_tail(log, lines: int = 200) -> None:
+def _print_tail(log: Path, lines: int = 200) -> None:
     """The last lines of a simulation log, for pytest to show if the test fails."""
     if not log.exists():
         return
