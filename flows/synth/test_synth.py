@@ -25,7 +25,7 @@ DEEPER = {
     # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
     # deeper beside the output stage: abc chains the FIFO's level flags.
     "fastnms_nms_serializer": MAX_LOGIC_LEVELS + 1,
-    "fastnms_nms_region": 13,
+    "fastnms_nms_region": 12,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 

@@ -544,6 +544,7 @@ begin
     variable run_last    : std_logic;
     variable last_now    : std_logic;
     variable data_now    : key_t;
+    variable landing     : boolean;  -- data_now is the write landing now
     variable cur_ends    : boolean;
     variable ended       : entry_t; -- the current run's class, when it ends alone
 
@@ -679,18 +680,27 @@ begin
       end if;
       -- A key landing now is the previous row's last (slot 0, for column 0):
       -- flagged a clock ahead (data_w0) to keep the compare off the key path.
+      -- Both candidates are compared, and the flag picks a result: the
+      -- selection stays off the compares' inputs.
       data_now := unsigned(data_ahead.word2);
-      if data_w.en = '1' and data_w0 = '1' and r_col0 = '1' then
+      landing  := data_w.en = '1' and data_w0 = '1' and r_col0 = '1';
+      if landing then
         data_now := data_w.data;
       end if;
       top_ge_cur  := top.key >= c_key;
-      push_ge_cur := data_now >= c_key;
-      push_ge_top := data_now >= top.key;
       -- The pixel comes after every pixel of a class in raster order, so it
       -- wins only with a higher score.
       top_ge_pix  := score_of(top.key) >= px_score;
-      push_ge_pix := score_of(data_now) >= px_score;
       cur_ge_pix  := score_of(c_key) >= px_score;
+      if landing then
+        push_ge_cur := data_w.data >= c_key;
+        push_ge_top := data_w.data >= top.key;
+        push_ge_pix := score_of(data_w.data) >= px_score;
+      else
+        push_ge_cur := unsigned(data_ahead.word2) >= c_key;
+        push_ge_top := unsigned(data_ahead.word2) >= top.key;
+        push_ge_pix := score_of(unsigned(data_ahead.word2)) >= px_score;
+      end if;
       merge_ge    := false;
       merge_pix   := false;
 
