@@ -13,7 +13,7 @@ MAX_LOGIC_LEVELS = 4
 # Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
 # does a whole column of its connected-components step in one clock (the key
 # comparisons on registers, then the stack's and the current class's updates
-# selecting among them), which yosys maps into 12 levels, 13 inside a core
+# selecting among them), which yosys maps into 11 levels, 12 inside a core
 # (docs/fastnms_nms_region.md, *Limits*).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
