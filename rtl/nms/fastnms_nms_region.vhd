@@ -544,7 +544,7 @@ begin
     variable run_last    : std_logic;
     variable last_now    : std_logic;
     variable data_now    : key_t;
-    variable landing     : boolean;  -- data_now is the write landing now
+    variable landing     : boolean; -- data_now is the write landing now
     variable cur_ends    : boolean;
     variable ended       : entry_t; -- the current run's class, when it ends alone
 
@@ -687,11 +687,11 @@ begin
       if landing then
         data_now := data_w.data;
       end if;
-      top_ge_cur  := top.key >= c_key;
+      top_ge_cur := top.key >= c_key;
       -- The pixel comes after every pixel of a class in raster order, so it
       -- wins only with a higher score.
-      top_ge_pix  := score_of(top.key) >= px_score;
-      cur_ge_pix  := score_of(c_key) >= px_score;
+      top_ge_pix := score_of(top.key) >= px_score;
+      cur_ge_pix := score_of(c_key) >= px_score;
       if landing then
         push_ge_cur := data_w.data >= c_key;
         push_ge_top := data_w.data >= top.key;
@@ -701,8 +701,8 @@ begin
         push_ge_top := unsigned(data_ahead.word2) >= top.key;
         push_ge_pix := score_of(unsigned(data_ahead.word2)) >= px_score;
       end if;
-      merge_ge    := false;
-      merge_pix   := false;
+      merge_ge  := false;
+      merge_pix := false;
 
       -- synthesis translate_off
       assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
