@@ -4,9 +4,10 @@ Each (toplevel, generics) pair gets its own build directory under build/sim, so
 generic sets never share a compiled library and pytest-xdist workers can run in
 parallel. Seeds: FASTNMS_SEED sets the seed of every test; otherwise each test
 uses a fixed seed derived from its name, so a run is reproducible. The seed is
-printed (pytest shows it on failure) and logged by the testbench. The build's
-and the simulator's output go to sim.log in the test's directory (a long run's
-log can be large); a failing test prints its path and last lines.
+printed (pytest shows it on failure) and logged by the testbench. The
+simulator's output (or the build's, when the build fails) goes to sim.log in the
+test's directory, as a long run's log can be large; pytest shows its path and
+last 200 lines when the test fails.
 """
 
 from __future__ import annotations
