@@ -24,7 +24,7 @@ last pixel the reader "flushes" that last row alone (no current row), one column
 in parallel with the next frame's first row (which has no previous row), then emits the
 end-of-frame beat. The input waits only for the output (a full record buffer) and, when a
 frame is narrower than the one before it, at its first row's last pixel for the flush's last
-column.
+column (after a one-row frame, the next frame waits for the flushes queued before it).
 """
 
 from __future__ import annotations

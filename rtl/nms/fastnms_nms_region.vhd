@@ -19,7 +19,8 @@
 -- row (which has no previous row) comes in; then the end-of-frame beat.
 -- in_ready drops only when the record FIFO has no room, and, for a frame
 -- narrower than the one before it, from its first row's last pixel until
--- the flush's last column, then two PRIME clocks.
+-- the flush's last column, then two PRIME clocks (after a one-row frame, the
+-- next frame waits instead).
 --
 -- The input is the detector's per-pixel stream: well formed (every line
 -- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof, the

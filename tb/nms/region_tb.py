@@ -291,6 +291,65 @@ async def never_stalls(dut):
         dut._log.info("%s %dx%d: 3 frames at one pixel per clock, records in bound", name, w, h)
 
 
+def size_change_allowance(widths: list[int]) -> list[int]:
+    """Input waits allowed by each frame of a back-to-back sequence (the first follows an
+    idle block): W_previous - W + 4 clocks for a frame narrower than the one before it,
+    none for any other. A narrower frame's first row ends while the previous frame's flush
+    still runs; its last pixel, or, for a one-row frame, the next frame, waits for it."""
+    return [0] + [a - b + 4 if b < a else 0 for a, b in zip(widths, widths[1:], strict=False)]
+
+
+@cocotb.test()
+async def size_changes(dut):
+    """Back-to-back frames of changing widths (MAX_WIDTH down to 3 and back, runs of
+    one-row frames, random widths and heights) with the output always ready: records
+    exact, and, counted clock by clock, the input waits up to the end of any frame are at
+    most the allowances of the frames so far (size_change_allowance)."""
+    if IDLE or STALL:
+        return
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    sequences = [
+        ([MAX_WIDTH, MIN_WIDTH, MAX_WIDTH], [3, 3, 3]),
+        ([MAX_WIDTH, MAX_WIDTH - 1, MIN_WIDTH, MIN_WIDTH], [2, 1, 1, 2]),
+        ([MAX_WIDTH] + [MIN_WIDTH] * 5, [1] * 6),
+    ]
+    for _ in range(60):
+        n = int(rng.integers(2, 7))
+        widths = rng.integers(MIN_WIDTH, MAX_WIDTH + 1, n).tolist()
+        sequences.append((widths, rng.choice([1, 1, 2, 3], n).tolist()))
+    at_bound = 0
+    for widths, heights in sequences:
+        maps = []
+        for w, h in zip(widths, heights, strict=True):
+            corner = rng.random((h, w)) < rng.random()
+            maps.append((corner, (rng.integers(0, 5, (h, w)) * corner).astype(np.int64)))
+        ends = np.cumsum([c.size for c, _ in maps]).tolist()
+        waits = [0] * len(maps)
+
+        async def watch(waits=waits, ends=ends):
+            taken = 0
+            while taken < ends[-1]:
+                await RisingEdge(dut.clk)
+                if value(dut.in_valid):
+                    if value(dut.in_ready):
+                        taken += 1
+                    else:
+                        waits[int(np.searchsorted(ends, taken, side="right"))] += 1
+
+        watcher = cocotb.start_soon(watch())
+        await tb.run_maps(maps, f"widths {widths}")
+        await watcher
+        waited = np.cumsum(waits).tolist()
+        allowed = np.cumsum(size_change_allowance(widths)).tolist()
+        assert all(a <= b for a, b in zip(waited, allowed, strict=True)), (
+            f"widths {widths}, heights {heights}: waits {waits}, allowed so far {allowed}"
+        )
+        at_bound += waited[-1] == allowed[-1] > 0
+    dut._log.info("size changes: waits within the allowance, reached in %d sequences", at_bound)
+
+
 @cocotb.test()
 async def idle_output(dut):
     """The end-of-frame beat leaves without further input."""
