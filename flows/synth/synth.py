@@ -19,11 +19,14 @@ SYNTH_BUILD = REPO / "build" / "synth"
 
 
 def ghdl_synth(
-    entity: str, generics: dict[str, object] | None = None, out_dir: Path | None = None
+    entity: str,
+    generics: dict[str, object] | None = None,
+    out_dir: Path | None = None,
+    sources: list[Path] | None = None,
 ) -> tuple[Path, str]:
-    """Synthesize `entity` with GHDL; return the Verilog netlist and GHDL's
-    messages. Raises CalledProcessError with the messages on any error
-    (GHDL refuses to synthesize a latch)."""
+    """Synthesize `entity` with GHDL from `sources` (default: the core's RTL); return
+    the Verilog netlist and GHDL's messages. Raises CalledProcessError with the
+    messages on any error (GHDL refuses to synthesize a latch)."""
     generics = generics or {}
     key = "-".join(f"{k}{v}" for k, v in sorted(generics.items())) or "default"
     out_dir = out_dir or SYNTH_BUILD / f"{entity}-{key}"
@@ -31,7 +34,7 @@ def ghdl_synth(
     netlist = out_dir / f"{entity}.v"
     cmd = ["ghdl", "--synth", "--std=08", "--out=verilog"]
     cmd += [f"-g{k}={v}" for k, v in generics.items()]
-    cmd += [str(f) for f in rtl_sources()] + ["-e", entity]
+    cmd += [str(f) for f in (sources or rtl_sources())] + ["-e", entity]
     proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out_dir)
     if proc.returncode != 0:
         raise subprocess.CalledProcessError(proc.returncode, cmd, proc.stdout, proc.stderr)

@@ -2,6 +2,8 @@
 without latches and with at most 4 logic levels between registers (yosys
 synth_xilinx), and the memories land in block RAM."""
 
+from pathlib import Path
+
 import pytest
 
 from flows.synth.axi_top import levels_outside, synthesizable_top
@@ -13,8 +15,9 @@ MAX_LOGIC_LEVELS = 4
 # Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
 # does a whole column of its connected-components step in one clock (the key
 # comparisons on registers, then the stack's and the current class's updates
-# selecting among them), which yosys maps into 11 levels, 12 inside a core
-# (docs/fastnms_nms_region.md, *Limits*).
+# selecting among them), which yosys maps into 11 levels, 12 inside a core; a
+# merge of two keys in one clock alone takes 5 (test_one_clock_key_merge_depth,
+# docs/fastnms_nms_region.md, *Limits*).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
@@ -143,6 +146,23 @@ def test_core_region_1920(score, nms):
     assert lutram == {"RAM64M": 75, "RAM32M": 6}, cells
     assert bram18_equivalents(cells) == 10, cells
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
+
+
+PROBES = Path(__file__).parent / "probes"
+
+
+@pytest.mark.parametrize(("key_bits", "levels"), [(34, 5), (30, 5), (12, 3)])
+def test_one_clock_key_merge_depth(key_bits, levels, tmp_path):
+    """The floor under the region NMS's depth in this flow: two key registers merged in
+    one clock (the better key chosen, the choice a register) map into 5 levels with the
+    region NMS's keys (34 bits: sad scores at 1920x1080; 30: opencv), 3 with scores
+    alone. Exact, so that docs/fastnms_nms_region.md (Limits) follows the tools."""
+    netlist, _ = ghdl_synth(
+        "key_merge", {"KEY_BITS": key_bits}, tmp_path, [PROBES / "key_merge.vhd"]
+    )
+    cells = yosys_xc7(netlist, "key_merge")
+    print(key_bits, summary(cells))
+    assert cells["logic_levels"] == levels, cells
 
 
 @pytest.mark.parametrize("ping_pong", [False, True])
