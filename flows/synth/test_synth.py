@@ -148,20 +148,24 @@ def test_core_region_1920(score, nms):
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
 
 
-PROBES = Path(__file__).parent / "probes"
+PROBES = Path(__file__).resolve().parent / "probes"
 
 
-@pytest.mark.parametrize(("key_bits", "levels"), [(34, 5), (30, 5), (12, 3)])
-def test_one_clock_key_merge_depth(key_bits, levels, tmp_path):
+@pytest.mark.parametrize(
+    ("key_bits", "order_flag", "levels"),
+    [(34, False, 5), (30, False, 5), (12, True, 3), (8, True, 3)],
+)
+def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     """The floor under the region NMS's depth in this flow: two key registers merged in
     one clock (the better key chosen, the choice a register) map into 5 levels with the
-    region NMS's keys (34 bits: sad scores at 1920x1080; 30: opencv), 3 with scores
-    alone. Exact, so that docs/fastnms_nms_region.md (Limits) follows the tools."""
-    netlist, _ = ghdl_synth(
-        "key_merge", {"KEY_BITS": key_bits}, tmp_path, [PROBES / "key_merge.vhd"]
-    )
+    region NMS's keys (score, row, column: 34 bits with sad scores at 1920x1080, 30 with
+    opencv), 3 when the keys are scores (12, 8 bits) and the raster order of the two
+    pixels is a register beside them. Exact, so that docs/fastnms_nms_region.md (Limits)
+    follows the tools."""
+    generics = {"KEY_BITS": key_bits, "ORDER_FLAG": str(order_flag).lower()}
+    netlist, _ = ghdl_synth("key_merge", generics, tmp_path, [PROBES / "key_merge.vhd"])
     cells = yosys_xc7(netlist, "key_merge")
-    print(key_bits, summary(cells))
+    print(generics, summary(cells))
     assert cells["logic_levels"] == levels, cells
 
 
