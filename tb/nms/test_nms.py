@@ -50,7 +50,8 @@ def test_nms_region(request, connectivity, idle, stall):
         "fastnms_nms_region",
         "region_tb",
         generics,
-        testcase="shapes,random_maps,random_sequences,empty_and_reset,never_stalls,size_changes,idle_output",
+        testcase="shapes,random_maps,random_sequences,empty_and_reset,never_stalls,size_changes,"
+        "output_backpressure,idle_output",
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
