@@ -169,6 +169,21 @@ def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.parametrize(("key_bits", "levels"), [(34, 4), (30, 4), (12, 2)])
+def test_registered_key_compare_depth(key_bits, levels, tmp_path):
+    """A region key comparison as a stage of its own (two key registers in, the result a
+    register) maps into 4 levels with the region NMS's 34- and 30-bit keys, 2 with a
+    12-bit score: a design that compares full keys a clock ahead has no level left in
+    that stage for anything else. Exact, so that docs/fastnms_nms_region.md (Limits)
+    follows the tools."""
+    netlist, _ = ghdl_synth(
+        "key_compare", {"KEY_BITS": key_bits}, tmp_path, [PROBES / "key_compare.vhd"]
+    )
+    cells = yosys_xc7(netlist, "key_compare")
+    print(key_bits, summary(cells))
+    assert cells["logic_levels"] == levels, cells
+
+
 @pytest.mark.parametrize("ping_pong", [False, True])
 def test_skid_buffer_handshake_fanout(ping_pong):
     """The ping-pong style's in_valid and out_ready reach its four control
