@@ -151,6 +151,15 @@ def test_core_region_1920(score, nms):
 PROBES = Path(__file__).resolve().parent / "probes"
 
 
+def probe_cells(entity: str, generics: dict[str, object], tmp_path: Path) -> dict[str, int]:
+    """A probe of flows/synth/probes (entity in the file of its name) through the core's
+    synthesis flow: its xc7 cell counts and logic levels."""
+    netlist, _ = ghdl_synth(entity, generics, tmp_path, [PROBES / f"{entity}.vhd"])
+    cells = yosys_xc7(netlist, entity)
+    print(entity, generics, summary(cells))
+    return cells
+
+
 @pytest.mark.parametrize(
     ("key_bits", "order_flag", "levels"),
     [(34, False, 5), (30, False, 5), (12, True, 3), (8, True, 3)],
@@ -163,9 +172,7 @@ def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     pixels is a register beside them. Exact, so that docs/fastnms_nms_region.md (Limits)
     follows the tools."""
     generics = {"KEY_BITS": key_bits, "ORDER_FLAG": str(order_flag).lower()}
-    netlist, _ = ghdl_synth("key_merge", generics, tmp_path, [PROBES / "key_merge.vhd"])
-    cells = yosys_xc7(netlist, "key_merge")
-    print(generics, summary(cells))
+    cells = probe_cells("key_merge", generics, tmp_path)
     assert cells["logic_levels"] == levels, cells
 
 
@@ -176,11 +183,7 @@ def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     12-bit score: a design that compares full keys a clock ahead has no level left in
     that stage for anything else. Exact, so that docs/fastnms_nms_region.md (Limits)
     follows the tools."""
-    netlist, _ = ghdl_synth(
-        "key_compare", {"KEY_BITS": key_bits}, tmp_path, [PROBES / "key_compare.vhd"]
-    )
-    cells = yosys_xc7(netlist, "key_compare")
-    print(key_bits, summary(cells))
+    cells = probe_cells("key_compare", {"KEY_BITS": key_bits}, tmp_path)
     assert cells["logic_levels"] == levels, cells
 
 

@@ -402,7 +402,7 @@ async def output_backpressure(dut):
         return
     tb = TB(dut)
     await tb.reset()
-    worst, waited = -1, 0
+    waited = 0
     for stall in (0.3, 0.6, 0.9):
         tb.sink.stall = stall
         for name, corner in worst_maps(MAX_WIDTH, tb.np_rng).items():
@@ -429,7 +429,6 @@ async def output_backpressure(dut):
                 counts["excess"],
             )
             assert counts["excess"] <= 0, f"{name}, stall {stall}: input waited beyond the output"
-            worst = max(worst, counts["excess"])
             waited += counts["waits"]
     tb.sink.stall = 0.0
     assert waited, "the record FIFO never filled: the test did not reach its case"
