@@ -187,6 +187,17 @@ def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_step_control_depth(connectivity, tmp_path):
+    """The region NMS step's control alone (its flags and decisions, from registered
+    inputs to a registered operation code, no slot, key or address) maps into 3 levels,
+    against 11 for the whole step: the depth is in routing slots and keys by decisions
+    made in the same clock, which a 4-level design must do a clock after them. Exact,
+    so that docs/fastnms_nms_region.md (Limits) follows the tools."""
+    cells = probe_cells("step_control", {"CONNECTIVITY": connectivity}, tmp_path)
+    assert cells["logic_levels"] == 3, cells
+
+
 @pytest.mark.parametrize("ping_pong", [False, True])
 def test_skid_buffer_handshake_fanout(ping_pong):
     """The ping-pong style's in_valid and out_ready reach its four control
