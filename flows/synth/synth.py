@@ -57,10 +57,9 @@ def cell_drivers(module: dict) -> dict[int, str]:
     return drivers
 
 
-def logic_levels(netlist_json: Path, top: str) -> int:
-    """The most LUT/CARRY4/MUXF/INV cells on any path between registers,
-    memories or ports of the mapped design (INV counted, conservatively)."""
-    module = json.loads(netlist_json.read_text())["modules"][top]
+def _cell_depths(module: dict) -> dict[str, int]:
+    """Logic cell name -> the most LUT/CARRY4/MUXF/INV cells on a path from a
+    register, memory or port up to and including it."""
     drivers = {b: (n, module["cells"][n]) for b, n in cell_drivers(module).items()}
     depth: dict[str, int] = {}
 
@@ -81,10 +80,61 @@ def logic_levels(netlist_json: Path, top: str) -> int:
         return depth[name]
 
     sys.setrecursionlimit(100000)
-    return max(
-        (cell_depth(n, c) for n, c in module["cells"].items() if LOGIC_CELLS.match(c["type"])),
-        default=0,
+    for n, c in module["cells"].items():
+        if LOGIC_CELLS.match(c["type"]):
+            cell_depth(n, c)
+    return depth
+
+
+def logic_levels(netlist_json: Path, top: str) -> int:
+    """The most LUT/CARRY4/MUXF/INV cells on any path between registers,
+    memories or ports of the mapped design (INV counted, conservatively)."""
+    module = json.loads(netlist_json.read_text())["modules"][top]
+    return max(_cell_depths(module).values(), default=0)
+
+
+def levels_by_register(netlist: Path, top: str) -> dict[str, int]:
+    """Signal of the RTL -> the most logic levels in front of any of its
+    flip-flops or memory inputs: where the depth of a design is, by name.
+    `netlist` is GHDL's Verilog (its `assign NAME = nNNN_q;` lines name the
+    registers); the mapped JSON beside it is read."""
+    alias = dict(
+        (q, name)
+        for name, q in re.findall(r"^\s*(?:assign )?(\w+) = (n\d+_q);", netlist.read_text(), re.M)
     )
+    module = json.loads(netlist.with_suffix(".xc7.json").read_text())["modules"][top]
+    cells = module["cells"]
+    depth = _cell_depths(module)
+    drivers = cell_drivers(module)
+    names: dict[int, str] = {}
+    for name, net in module["netnames"].items():
+        for bit in net["bits"]:
+            old = names.get(bit) if isinstance(bit, int) else ""
+            if isinstance(bit, int) and (old is None or (old[0] == "$" and name[0] != "$")):
+                names[bit] = name
+    result: dict[str, int] = {}
+    for name, cell in cells.items():
+        if LOGIC_CELLS.match(cell["type"]):
+            continue
+        ins = [
+            b
+            for p, bs in cell["connections"].items()
+            if cell["port_directions"].get(p) == "input"
+            for b in bs
+            if isinstance(b, int)
+        ]
+        levels = max((depth.get(drivers.get(b, ""), 0) for b in ins), default=0)
+        outs = [
+            b
+            for p, bs in cell["connections"].items()
+            if cell["port_directions"].get(p) == "output"
+            for b in bs
+        ]
+        label = re.sub(r"\[.*", "", names.get(outs[0], name)) if outs else name
+        label = alias.get(label, label)
+        if not label.startswith("$"):
+            result[label] = max(result.get(label, 0), levels)
+    return result
 
 
 def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str]]:
@@ -260,7 +310,7 @@ def entities() -> list[str]:
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:
-        sys.exit("usage: synth.py ENTITY [GENERIC=VALUE ...] [--cells] [--paths]")
+        sys.exit("usage: synth.py ENTITY [GENERIC=VALUE ...] [--cells] [--paths] [--registers]")
     name, *args = sys.argv[1:]
     gens = dict(a.split("=", 1) for a in args if "=" in a)
     path, _ = ghdl_synth(name, gens)
@@ -271,6 +321,10 @@ if __name__ == "__main__":
             print(f"{levels} levels:")
             for step in p:
                 print("   ", step)
+    if "--registers" in args:
+        ranked = sorted(levels_by_register(path, name).items(), key=lambda kv: (-kv[1], kv[0]))
+        for signal, levels in ranked:
+            print(f"{levels:3d}  {signal}")
     if "--cells" in args:
         for cell, count in sorted(cells.items()):
             print(f"{cell:12s} {count}")

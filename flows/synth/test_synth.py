@@ -7,7 +7,14 @@ from pathlib import Path
 import pytest
 
 from flows.synth.axi_top import levels_outside, synthesizable_top
-from flows.synth.synth import entities, flip_flops_reading, ghdl_synth, summary, yosys_xc7
+from flows.synth.synth import (
+    entities,
+    flip_flops_reading,
+    ghdl_synth,
+    levels_by_register,
+    summary,
+    yosys_xc7,
+)
 
 LATCHES = ("LDCE", "LDPE")
 # The most LUT/CARRY4/MUXF/INV cells allowed between two registers.
@@ -174,6 +181,9 @@ def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     generics = {"KEY_BITS": key_bits, "ORDER_FLAG": str(order_flag).lower()}
     cells = probe_cells("key_merge", generics, tmp_path)
     assert cells["logic_levels"] == levels, cells
+    # The depth is in front of the merged key register, by name (synth.py --registers).
+    by_register = levels_by_register(tmp_path / "key_merge.v", "key_merge")
+    assert by_register["a"] == levels and by_register["a_r"] == 0, by_register
 
 
 @pytest.mark.parametrize(("key_bits", "levels"), [(34, 4), (30, 4), (12, 2)])
