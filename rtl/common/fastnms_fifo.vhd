@@ -17,6 +17,8 @@
 --   in_room2 = '1' on a clock means in_ready = '1' on the next clock too:
 --     room for this clock's word and the next one, for a producer with one
 --     register stage after its decision;
+--   in_room3 = '1' on a clock means in_ready = '1' on the next two clocks
+--     too, for a producer with two register stages after its decision;
 --   in_spare = '1' on a clock means that after a word written on it, in_ready
 --     stays '1' on every later clock until the next write: room for this
 --     word and one that may come any time later (never with WORDS < 8).
@@ -30,7 +32,7 @@
 -- clock: a word is read only if it is in the RAM even without the last
 -- clock's write (so a word written into an empty FIFO waits one more clock),
 -- and in_ready drops while the RAM may have fewer than three free words
--- (in_room2 while it may have fewer than four).
+-- (in_room2 while it may have fewer than four, in_room3 fewer than five).
 --
 -- Up to 2048 words the level has at most 12 bits and the logic at most 4
 -- levels. `busy` is '1' while any word is inside (one clock late).
@@ -54,6 +56,7 @@ entity fastnms_fifo is
     in_valid  : in    std_logic;
     in_ready  : out   std_logic;
     in_room2  : out   std_logic;
+    in_room3  : out   std_logic;
     in_spare  : out   std_logic;
     in_data   : in    std_logic_vector(WIDTH - 1 downto 0);
     out_valid : out   std_logic;
@@ -78,6 +81,7 @@ architecture rtl of fastnms_fifo is
   signal filled  : std_logic;                    -- a word is in the RAM for sure
   signal ready   : std_logic;
   signal room2   : std_logic;
+  signal room3   : std_logic;
   signal spare   : std_logic;
   signal write   : std_logic;
   signal read_en : std_logic;                    -- the RAM's read register advances
@@ -133,6 +137,8 @@ begin
       ready <= not (level(ADDR_BITS) or (and level(ADDR_BITS - 1 downto 1)));
       -- Room for the words of this clock and the next two: level <= WORDS - 4.
       room2 <= to_sl(level <= WORDS - 4);
+      -- ... and the next three: level <= WORDS - 5 (never with WORDS = 4).
+      room3 <= to_sl(WORDS >= 5 and level <= maximum(WORDS - 5, 0));
       -- A write now leaves level <= WORDS - 3 (in_ready) once the two writes
       -- the level does not show yet are in: level <= WORDS - 6.
       spare <= to_sl(to_integer(level) <= WORDS - 6);
@@ -148,6 +154,7 @@ begin
         level   <= (others => '0');
         ready   <= '0';
         room2   <= '0';
+        room3   <= '0';
         spare   <= '0';
         q_valid <= '0';
         busy    <= '0';
@@ -158,6 +165,7 @@ begin
 
   in_ready <= ready;
   in_room2 <= room2;
+  in_room3 <= room3;
   in_spare <= spare;
 
   ram : entity work.fastnms_ram_sdp

@@ -153,6 +153,7 @@ begin
       in_valid  => in_valid and (or in_keep or in_eof),
       in_ready  => in_ready,
       in_room2  => open,
+      in_room3  => open,
       in_spare  => open,
       in_data   => in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
                    std_logic_vector(in_scores),

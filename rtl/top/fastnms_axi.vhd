@@ -631,6 +631,7 @@ begin
       in_valid  => q_valid,
       in_ready  => q_ready,
       in_room2  => open,
+      in_room3  => open,
       in_spare  => q_spare,
       in_data   => q_data,
       out_valid => f_valid,

@@ -1,5 +1,5 @@
 """cocotb testbench of fastnms_fifo: data order, capacity, in_ready,
-in_room2 and in_spare against a count of the words inside, under random
+in_room2, in_room3 and in_spare against a count of the words inside, under random
 valid/ready."""
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ WORDS = max(4, 1 << (DEPTH - 1).bit_length())
 # The guarantees of the header comment: in_ready is '1' on every clock on
 # which fewer than WORDS - 2 words are inside (so at least DEPTH - 2); with
 # the output stalled it takes WORDS + 3 words; in_room2 = '1' on a clock means
-# in_ready = '1' on the next one.
+# in_ready = '1' on the next one, in_room3 on the next two.
 READY_BELOW = WORDS - 2
 STALLED_CAPACITY = WORDS + 3
 # A word written into an empty FIFO is on the output this many clocks later.
@@ -43,6 +43,8 @@ class TB(BufferTB):
         next_data = 0
         fewest_refused = None
         room2_before = 0
+        room3_before = [0, 0]  # in_room3 one and two clocks ago
+        room3_seen = 0
         promise = False  # the last write had in_spare: in_ready holds until the next
         spares = 0
         most_inside = 0
@@ -61,11 +63,15 @@ class TB(BufferTB):
                 assert ready, f"clock {k}: in_ready = 0 with {inside} words inside"
             if room2_before:
                 assert ready, f"clock {k}: in_ready = 0 the clock after in_room2 = 1"
+            if any(room3_before):
+                assert ready, f"clock {k}: in_ready = 0 within two clocks of in_room3 = 1"
             if promise:
                 assert ready, f"clock {k}: in_ready = 0 after a write with in_spare = 1"
             if not ready:
                 fewest_refused = inside if fewest_refused is None else min(fewest_refused, inside)
             room2_before = value(dut.in_room2)
+            room3_before = [value(dut.in_room3), room3_before[0]]
+            room3_seen += room3_before[0]
             if valid and ready:
                 promise = bool(value(dut.in_spare))
                 spares += promise
@@ -92,6 +98,7 @@ class TB(BufferTB):
             "fewest_refused": fewest_refused,
             "most_inside": most_inside,
             "spare_writes": spares,
+            "room3_clocks": room3_seen,
         }
 
 
@@ -100,11 +107,13 @@ async def random_traffic(dut):
     """Random valid/ready at several rates, and phases that fill and drain:
     the words leave in order, in_ready is never low with fewer than
     WORDS - 2 words inside, in_room2 promises in_ready one clock ahead,
+    in_room3 two clocks ahead,
     in_spare promises it until the next write."""
     tb = TB(dut)
     await tb.reset()
     fewest = []
     spares = 0
+    room3 = 0
     cases = [
         (lambda k: 0.5, lambda k: 0.5),
         (lambda k: 0.9, lambda k: 0.3),
@@ -119,11 +128,13 @@ async def random_traffic(dut):
         dut._log.info("case %d: %s", i, figures)
         assert figures["words"] > 100, "nothing moved"
         spares += figures["spare_writes"]
+        room3 += figures["room3_clocks"]
         if figures["fewest_refused"] is not None:
             fewest.append(figures["fewest_refused"])
     dut._log.info("fewest words inside with in_ready = 0: %s", min(fewest))
     assert fewest, "in_ready never dropped: the capacity was not tested"
     assert (spares > 0) == (WORDS >= 8), f"{spares} writes with in_spare = 1 (WORDS {WORDS})"
+    assert (room3 > 0) == (WORDS >= 8), f"{room3} clocks with in_room3 = 1 (WORDS {WORDS})"
 
 
 @cocotb.test()
