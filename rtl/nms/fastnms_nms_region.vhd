@@ -76,28 +76,48 @@ architecture rtl of fastnms_nms_region is
   constant STACK_DEPTH : positive := (MAX_WIDTH + 1) / 4 + 1;
   constant STACK_WORDS : positive := maximum(STACK_DEPTH - 2, 1);
   constant DB          : positive := bits_for(STACK_DEPTH);
-  constant ENTRY_BITS  : positive := 2 * SB + 3 + KB;
+  constant ENTRY_BITS  : positive := 2 * SB + KB;
   constant OUT_BITS    : positive := 1 + XB + YB + SCORE_BITS;
 
   subtype slot_t is unsigned(SB - 1 downto 0);
 
   subtype key_t is unsigned(KB - 1 downto 0);
 
-  -- A previous-row class on the stack.
-  type entry_t is record
+  -- A previous-row class on the stack, in two parts: its flags, which the
+  -- control (the step's decisions) keeps, and its slots and key, which the
+  -- data path keeps one clock later.
+  type flags_t is record
     last   : std_logic; -- its run under the reader is its last in the previous row
     runs   : std_logic; -- it has runs in the current row (head and tail are valid)
-    head   : slot_t;    -- slot of its first run in the current row
-    tail   : slot_t;    -- slot of its latest run in the current row
     merged : std_logic; -- also holds the class of the entry below
-    key    : key_t;     -- best pixel (valid unless merged into the entry above)
+  end record flags_t;
+
+  type entry_t is record
+    head : slot_t; -- slot of its first run in the current row
+    tail : slot_t; -- slot of its latest run in the current row
+    key  : key_t;  -- best pixel (valid unless merged into the entry above)
   end record entry_t;
+
+  constant FLAG_BITS : positive := 3;
+
+  function pack (f : flags_t) return std_logic_vector is
+  begin
+
+    return f.last & f.runs & f.merged;
+
+  end function pack;
+
+  function unpack (v : std_logic_vector(FLAG_BITS - 1 downto 0)) return flags_t is
+  begin
+
+    return (last => v(2), runs => v(1), merged => v(0));
+
+  end function unpack;
 
   function pack (e : entry_t) return std_logic_vector is
   begin
 
-    return e.last & e.runs & std_logic_vector(e.head) & std_logic_vector(e.tail) & e.merged &
-           std_logic_vector(e.key);
+    return std_logic_vector(e.head) & std_logic_vector(e.tail) & std_logic_vector(e.key);
 
   end function pack;
 
@@ -105,15 +125,43 @@ architecture rtl of fastnms_nms_region is
     variable e : entry_t;
   begin
 
-    e.last   := v(ENTRY_BITS - 1);
-    e.runs   := v(ENTRY_BITS - 2);
-    e.head   := unsigned(v(ENTRY_BITS - 3 downto ENTRY_BITS - 2 - SB));
-    e.tail   := unsigned(v(ENTRY_BITS - 3 - SB downto KB + 1));
-    e.merged := v(KB);
-    e.key    := unsigned(v(KB - 1 downto 0));
+    e.head := unsigned(v(ENTRY_BITS - 1 downto ENTRY_BITS - SB));
+    e.tail := unsigned(v(ENTRY_BITS - SB - 1 downto KB));
+    e.key  := unsigned(v(KB - 1 downto 0));
     return e;
 
   end function unpack;
+
+  -- The operation of one column, decided by the control and carried out by
+  -- the data path on the next clock: every selection the data path makes
+  -- is on these registered bits.
+  type op_t is record
+    push        : std_logic; -- a previous-row run pushes its class ...
+    push_ram    : std_logic; -- ... and the second entry goes to the stack RAM
+    start       : std_logic; -- a current run starts
+    attach      : std_logic; -- the current run's class joins the top's ...
+    attach_runs : std_logic; -- ... which already has current-row runs
+    takeover    : std_logic; -- the pushed class takes over the one below
+    pix_top     : std_logic; -- the pixel joins the top's class
+    pix_cur     : std_logic; -- the pixel joins the current run's class
+    cur_final   : std_logic; -- the current run's class ends alone: finalize
+    pop         : std_logic; -- the top pops ...
+    pop_ram     : std_logic; -- ... and the third entry is read from the RAM
+    pop_merged  : std_logic; -- ... hands its class to the entry below
+    pop_detach  : std_logic; -- ... goes on as the current run's class
+    pop_final   : std_logic; -- ... is finalized
+    pop_emit    : std_logic; -- ... closes: its record leaves
+    bank        : std_logic; -- the current row's head table bank
+    rstep       : std_logic; -- the reader stepped (the data table's read)
+    r_col0      : std_logic; -- ... at its row's column 0
+    ahead_slot  : slot_t;    -- ... reading this slot
+    flush_ends  : std_logic; -- a flush's last column: the end-of-frame beat is due
+    score       : unsigned(SCORE_BITS - 1 downto 0);
+    cx          : unsigned(XB - 1 downto 0);
+    cy          : unsigned(YB - 1 downto 0);
+    ram_wa      : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+    ram_ra      : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  end record op_t;
 
   function score_of (k : key_t) return unsigned is
   begin
@@ -279,11 +327,6 @@ architecture rtl of fastnms_nms_region is
   signal first_row   : std_logic;
   signal frame_start : std_logic;
   signal cm          : std_logic;
-  -- (sim_zeros: the compares made every clock read c_key, top, second,
-  -- third and the tables before their first write.)
-  signal c_key    : key_t  := unsigned(sim_zeros(KB));
-  signal c_head   : slot_t := unsigned(sim_zeros(SB));
-  signal c_tail   : slot_t := unsigned(sim_zeros(SB));
   signal attached : std_logic;
   signal active   : std_logic;
 
@@ -303,14 +346,32 @@ architecture rtl of fastnms_nms_region is
   signal prime_st      : unsigned(1 downto 0);
   signal c_penult      : unsigned(XB - 1 downto 0);
 
-  -- Stack: top, second, and a copy of the RAM's word below them (refreshed
-  -- two clocks after a pop: third_rd1, third_rd2).
+  -- Stack flags (the control's): top, second, and a copy of the flag RAM's
+  -- word below them (refreshed two clocks after a pop: third_rd1, third_rd2).
   signal depth     : unsigned(DB - 1 downto 0);
-  signal top       : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal second    : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal third     : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal top       : flags_t;
+  signal second    : flags_t;
+  signal third     : flags_t;
   signal third_rd1 : std_logic;
   signal third_rd2 : std_logic;
+  -- A last bit taken at column 0 may be rewritten by the previous row's
+  -- last column one clock later (the data path writes a clock after the
+  -- control decides): the next clock takes that write.
+  signal fix_last : std_logic;
+
+  -- The data path, one clock after the control: its operation, the current
+  -- class's slots and key, the stack's slots and keys (top, second, third).
+  -- (sim_zeros: the compares made every clock read c_key, the stack and
+  -- the tables before their first write.)
+  signal op          : op_t;
+  signal c_key       : key_t   := unsigned(sim_zeros(KB));
+  signal c_head      : slot_t  := unsigned(sim_zeros(SB));
+  signal c_tail      : slot_t  := unsigned(sim_zeros(SB));
+  signal d_top       : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_second    : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_third     : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_third_rd1 : std_logic;
+  signal d_third_rd2 : std_logic;
 
   -- Memories. Read enables and addresses are this clock's steps; writes are
   -- registered.
@@ -337,17 +398,35 @@ architecture rtl of fastnms_nms_region is
   -- next row's column 0 takes as it lands).
   signal data_w0  : std_logic;
   signal spare_w0 : std_logic;
+  -- The bit writes' slots, 0 or 1, flagged with them: the previous row's
+  -- last writes land as the next row's first columns take those words
+  -- (column 0 and 1: slot 0, last bit; column 2: slot 1, the spare).
+  signal last_w_s0     : std_logic;
+  signal last_w_s1     : std_logic;
+  signal head_w_s1     : std_logic;
+  signal last_spare_s0 : std_logic;
+  signal last_spare_s1 : std_logic;
+  signal head_spare_s1 : std_logic;
   -- The reader's column is in slot 0: its run is the first of the row, so
   -- the first of its class.
   signal r_slot0 : std_logic;
   signal r_col0  : std_logic; -- rcol = 0
+  signal r_col1  : std_logic; -- rcol = 1
+  signal r_col2  : std_logic; -- rcol = 2
 
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
   -- read and the row being written are never in the same bank.
   signal cur_bank : std_logic;
   signal r_bank   : std_logic;
-  -- The stack's RAM, below its registers.
+  -- The stack's RAMs, below its registers: flags (the control's) and
+  -- slots and keys (the data path's, written and read a clock later).
+  signal flags_we : std_logic;
+  signal flags_wa : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal flags_wd : std_logic_vector(FLAG_BITS - 1 downto 0);
+  signal flags_re : std_logic;
+  signal flags_ra : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+  signal flags_rd : std_logic_vector(FLAG_BITS - 1 downto 0);
   signal stack_we : std_logic;
   signal stack_wa : unsigned(clog2(STACK_WORDS) - 1 downto 0);
   signal stack_wd : std_logic_vector(ENTRY_BITS - 1 downto 0);
@@ -496,156 +575,88 @@ begin
 
   end process reads;
 
-  step : process (clk) is
+  -- The control: one column of the step's decisions per clock, on flags
+  -- only (the stack entries', attached and active), from registers; the
+  -- column's operation goes to the data path (op), which carries it out on
+  -- the next clock. The reader and the clock schedule are here too.
+  control : process (clk) is
 
-    variable v_top      : entry_t;
-    variable v_second   : entry_t;
-    variable v_third    : entry_t;
-    variable v_depth    : unsigned(DB - 1 downto 0);
-    variable v_key      : key_t;
-    variable v_head     : slot_t;
-    variable v_tail     : slot_t;
-    variable v_att      : std_logic;
-    variable v_act      : std_logic;
-    variable popped     : entry_t;
-    variable pushed     : boolean;
-    variable c0         : std_logic;
-    variable r_eol      : boolean;
-    variable c_eol      : boolean;
-    variable pix        : key_t;
-    variable dw1        : data_write_t;
-    variable dw2        : data_write_t;
-    variable hw1        : bit_write_t;
-    variable hw2        : bit_write_t;
-    variable lw1        : bit_write_t;
-    variable lw2        : bit_write_t;
-    variable emit       : boolean;
-    variable emit_key   : key_t;
-    variable touch      : boolean;
-    variable merge_en   : boolean;  -- the top's class takes merge_key ...
-    variable merge_key  : key_t;
-    variable pix_to_top : boolean;  -- ... and the pixel
-    variable merge_ge   : boolean;  -- its key >= merge_key
-    variable merge_pix  : boolean;  -- merge_key >= the pixel
+    variable v_top    : flags_t;
+    variable v_second : flags_t;
+    variable v_third  : flags_t;
+    variable v_depth  : unsigned(DB - 1 downto 0);
+    variable v_att    : std_logic;
+    variable v_act    : std_logic;
+    variable popped   : flags_t;
+    variable pushed   : boolean;
+    variable c0       : std_logic;
+    variable r_eol    : boolean;
+    variable c_eol    : boolean;
+    variable touch    : boolean;
+    variable o        : op_t;
+
     variable run_starts : boolean;
-    -- Key comparisons on registers: the top's key (top), the key of a pushed
-    -- class (push), the current class's (cur), the pixel's score (pix).
-    variable top_ge_cur  : boolean;
-    variable push_ge_cur : boolean;
-    variable push_ge_top : boolean;
-    variable top_ge_pix  : boolean;
-    variable push_ge_pix : boolean;
-    variable cur_ge_pix  : boolean;
-    variable flush_ends  : boolean;
-    variable eof_step    : boolean;
-    variable v_primed    : std_logic;
-    variable p_start     : boolean;
-    variable p_end       : boolean;
-    variable run_head    : std_logic;
-    variable run_last    : std_logic;
-    variable last_now    : std_logic;
-    variable data_now    : key_t;
-    variable landing     : boolean; -- data_now is the write landing now
-    variable cur_ends    : boolean;
-    variable ended       : entry_t; -- the current run's class, when it ends alone
-
-    procedure add_data_write (
-      addr : slot_t;
-      data : key_t
-    ) is
-    begin
-
-      if dw1.en = '0' then
-        dw1 := (en => '1', addr => addr, data => data);
-      else
-        dw2 := (en => '1', addr => addr, data => data);
-      end if;
-
-    end procedure add_data_write;
-
-    procedure add_head_write (
-      slot : slot_t;
-      data : std_logic
-    ) is
-    begin
-
-      -- In the current row's bank.
-      if hw1.en = '0' then
-        hw1 := (en => '1', addr => slot & cur_bank, data => data);
-      else
-        hw2 := (en => '1', addr => slot & cur_bank, data => data);
-      end if;
-
-    end procedure add_head_write;
-
-    procedure add_last_write (
-      slot : slot_t;
-      data : std_logic
-    ) is
-    begin
-
-      if lw1.en = '0' then
-        lw1 := (en => '1', addr => slot & '0', data => data);
-      else
-        lw2 := (en => '1', addr => slot & '0', data => data);
-      end if;
-
-    end procedure add_last_write;
-
-    procedure finalize (
-      head : slot_t;
-      tail : slot_t;
-      key  : key_t
-    ) is
-    begin
-
-      -- The class has all its current-row runs: its key waits at its first
-      -- run's slot, which is marked first, and its latest run is marked last.
-      add_data_write(head, key);
-      add_head_write(head, '1');
-      add_last_write(tail, '1');
-
-    end procedure finalize;
+    variable flush_ends : boolean;
+    variable eof_step   : boolean;
+    variable v_primed   : std_logic;
+    variable p_start    : boolean;
+    variable p_end      : boolean;
+    variable run_head   : std_logic;
+    variable run_last   : std_logic;
+    variable last_now   : std_logic;
+    variable fwd_last0  : boolean;
+    variable fwd_last1  : boolean;
+    variable fwd_head1  : boolean;
 
   begin
 
     if rising_edge(clk) then
-      v_top      := top;
-      v_second   := second;
-      v_third    := third;
-      v_depth    := depth;
-      v_key      := c_key;
-      v_head     := c_head;
-      v_tail     := c_tail;
-      v_att      := attached;
-      v_act      := active;
-      dw1        := (en => '0', addr => c_head, data => c_key);
-      dw2        := dw1;
-      hw1        := NO_BIT_WRITE;
-      hw2        := NO_BIT_WRITE;
-      lw1        := NO_BIT_WRITE;
-      lw2        := NO_BIT_WRITE;
-      emit       := false;
-      emit_key   := top.key;
-      pushed     := false;
-      touch      := false;
-      merge_en   := false;
-      merge_key  := c_key;
-      pix_to_top := false;
+      v_top    := top;
+      v_second := second;
+      v_third  := third;
+      v_depth  := depth;
+      v_att    := attached;
+      v_act    := active;
+      pushed   := false;
+      touch    := false;
 
-      -- The stack RAM's word below the second entry, two clocks after a pop.
+      -- The flag RAM's word below the second entry, two clocks after a pop.
       if third_rd2 = '1' then
-        v_third := unpack(stack_rd);
+        v_third := unpack(flags_rd);
       end if;
       third_rd2 <= third_rd1;
       third_rd1 <= '0';
-      stack_we  <= '0';
-      stack_re  <= '0';
+      flags_we  <= '0';
+      flags_re  <= '0';
 
       c0    := px_corner;
       r_eol := r_last = '1';
       c_eol := px_eol = '1';
-      pix   := px_score & not cy & not cx;
+
+      o             := op;
+      o.push        := '0';
+      o.push_ram    := '0';
+      o.start       := '0';
+      o.attach      := '0';
+      o.attach_runs := '0';
+      o.takeover    := '0';
+      o.pix_top     := '0';
+      o.pix_cur     := '0';
+      o.cur_final   := '0';
+      o.pop         := '0';
+      o.pop_ram     := '0';
+      o.pop_merged  := '0';
+      o.pop_detach  := '0';
+      o.pop_final   := '0';
+      o.pop_emit    := '0';
+      o.flush_ends  := '0';
+      o.bank        := cur_bank;
+      o.rstep       := rstep;
+      o.r_col0      := r_col0;
+      o.ahead_slot  := ahead_slot;
+      o.score       := px_score;
+      o.cx          := cx;
+      o.cy          := cy;
 
       -- synthesis translate_off
       if rst = '1' then
@@ -653,8 +664,8 @@ begin
       end if;
       assert not checks_on or rst = '1' or
              (r_last = to_sl(r_ahead = 1) and r_col0 = to_sl(rcol = 0) and
-              r_slot0 = to_sl(rcol < 2))
-        report "fastnms_nms_region: r_last, r_col0 or r_slot0 out of step"
+              r_slot0 = to_sl(rcol < 2) and r_col1 = to_sl(rcol = 1) and r_col2 = to_sl(rcol = 2))
+        report "fastnms_nms_region: r_last, r_col0, r_col1, r_col2 or r_slot0 out of step"
         severity failure;
       assert not (cstep = '1' and first_row = '1' and flushing = '1' and cx > rcol)
         report "fastnms_nms_region: a first row overtaking the flush"
@@ -664,59 +675,48 @@ begin
         severity failure;
       -- synthesis translate_on
 
-      -- The bits of the previous-row run at rcol, from registers. The last
-      -- bit also takes the write landing now, which only the previous row's
-      -- last column makes (to slot 0, for column 0); the pop below never
-      -- needs it, as a run that starts at column 0 cannot end there.
-      p_start  := rstep = '1' and p0 = '1' and pm = '0';
-      p_end    := rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol));
-      run_head := head_ahead.word2(0) or r_slot0;
+      -- A last bit taken at column 0 on the clock before: the previous row's
+      -- last column's write to slot 0, if any, is in last_w now.
+      if fix_last = '1' and last_w.en = '1' and last_w_s0 = '1' then
+        v_top.last := last_w.data;
+      end if;
+
+      -- The bits of the previous-row run at rcol, from registers. The table
+      -- writes land a clock after the step that decides them, so the
+      -- previous row's last writes can land as the next row takes their
+      -- words: at columns 0 and 1 (slot 0; its head bit is known, the run
+      -- is the row's first) and at column 2 (slot 1, the last column's
+      -- second write). Flags registered with each write say so; the
+      -- assertions below check that no other write lands on a word taken.
+      p_start   := rstep = '1' and p0 = '1' and pm = '0';
+      p_end     := rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol));
+      fwd_last0 := last_w.en = '1' and last_w_s0 = '1' and r_slot0 = '1';
+      fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';
+      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
+                   head_w.addr(0) = r_bank;
+      run_head  := head_ahead.word2(0) or r_slot0;
+      if fwd_head1 then
+        run_head := head_w.data;
+      end if;
       last_now := last_ahead.word2(0);
-      if last_w.en = '1' and last_w.addr = last_ahead.addr2 then
+      if fwd_last0 or fwd_last1 then
         last_now := last_w.data;
       end if;
-      run_last := top.last;
-      if p_start then
-        run_last := last_ahead.word2(0);
-      end if;
-      -- A key landing now is the previous row's last (slot 0, for column 0):
-      -- flagged a clock ahead (data_w0) to keep the compare off the key path.
-      -- Both candidates are compared, and the flag picks a result: the
-      -- selection stays off the compares' inputs.
-      data_now := unsigned(data_ahead.word2);
-      landing  := data_w.en = '1' and data_w0 = '1' and r_col0 = '1';
-      if landing then
-        data_now := data_w.data;
-      end if;
-      top_ge_cur := top.key >= c_key;
-      -- The pixel comes after every pixel of a class in raster order, so it
-      -- wins only with a higher score.
-      top_ge_pix := score_of(top.key) >= px_score;
-      cur_ge_pix := score_of(c_key) >= px_score;
-      if landing then
-        push_ge_cur := data_w.data >= c_key;
-        push_ge_top := data_w.data >= top.key;
-        push_ge_pix := score_of(data_w.data) >= px_score;
-      else
-        push_ge_cur := unsigned(data_ahead.word2) >= c_key;
-        push_ge_top := unsigned(data_ahead.word2) >= top.key;
-        push_ge_pix := score_of(unsigned(data_ahead.word2)) >= px_score;
-      end if;
-      merge_ge  := false;
-      merge_pix := false;
 
       -- synthesis translate_off
       assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
-                  head_w.addr = head_ahead.addr2)
+                  head_w.addr = head_ahead.addr2 and not fwd_head1)
         report "fastnms_nms_region: a head bit written as the reader takes it"
         severity failure;
       assert not (p_start and last_w.en = '1' and last_w.addr = last_ahead.addr2 and
-                  (rcol /= 0 or p_end))
+                  not (fwd_last0 or fwd_last1))
         report "fastnms_nms_region: a last bit written as the reader takes it"
         severity failure;
-      assert not (p_start and run_head = '1' and data_w.en = '1' and
-                  (data_w.addr & '0') = data_ahead.addr2 and (rcol /= 0 or data_w0 = '0'))
-        report "fastnms_nms_region: a key written as the reader takes it"
+      assert not ((fwd_last0 or fwd_last1) and last_w.addr /= last_ahead.addr2)
+        report "fastnms_nms_region: last_w_s0 or last_w_s1 out of step"
+        severity failure;
+      assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
+        report "fastnms_nms_region: head_w_s1 out of step"
         severity failure;
       assert not (p_start and run_head = '0' and v_depth = 0)
         report "fastnms_nms_region: a continuing run without an open class"
@@ -729,37 +729,31 @@ begin
         if run_head = '0' then
           v_top.last := last_now;
         else
+          o.push := '1';
           if v_depth >= 2 then
-            stack_we  <= '1';
-            stack_wa  <= resize(v_depth - 2, stack_wa'length);
-            stack_wd  <= pack(v_second);
-            v_third   := v_second;
-            third_rd1 <= '0';
-            third_rd2 <= '0';
+            flags_we    <= '1';
+            flags_wa    <= resize(v_depth - 2, flags_wa'length);
+            flags_wd    <= pack(v_second);
+            o.push_ram  := '1';
+            o.ram_wa    := resize(v_depth - 2, o.ram_wa'length);
+            v_third     := v_second;
+            third_rd1   <= '0';
+            third_rd2   <= '0';
           end if;
           v_second := v_top;
-          v_top    :=
-          (
-            last => last_now,
-            runs => '0',
-            head => (others => '0'),
-            tail => (others => '0'),
-            merged => '0',
-            key => data_now
-          );
+          v_top    := (last => last_now, runs => '0', merged => '0');
           v_depth  := v_depth + 1;
           pushed   := true;
         end if;
       end if;
+      fix_last <= to_sl(p_start and r_col0 = '1');
 
       -- 2. A current-row run starts: a class of its own for now.
       run_starts := cstep = '1' and c0 = '1' and cm = '0';
       if run_starts then
-        v_key  := pix;
-        v_head := slot_of(cx);
-        v_tail := slot_of(cx);
-        v_att  := '0';
-        v_act  := '1';
+        o.start := '1';
+        v_att   := '0';
+        v_act   := '1';
       end if;
 
       -- 3. Contact between the current run and the top's run.
@@ -769,93 +763,57 @@ begin
       end if;
       if touch then
         if v_att = '0' then
-          if v_top.runs = '0' then
-            v_top.runs := '1';
-            v_top.head := v_head;
-          else
-            -- The class's latest run is no longer its last, this run's class
-            -- no longer starts at its own first run.
-            add_last_write(v_top.tail, '0');
-            add_head_write(v_head, '0');
-          end if;
-          v_top.tail := v_tail;
-          merge_en   := true;
-          merge_key  := v_key;
-          if run_starts then -- the class is the pixel
-            merge_ge := (pushed and push_ge_pix) or (not pushed and top_ge_pix);
-          else
-            merge_ge  := (pushed and push_ge_cur) or (not pushed and top_ge_cur);
-            merge_pix := cur_ge_pix;
-          end if;
-          v_att := '1';
+          o.attach      := '1';
+          o.attach_runs := v_top.runs;
+          v_top.runs    := '1';
+          v_att         := '1';
         elsif pushed then
           -- The current run's class is the entry below: the new entry takes it over.
-          merge_en     := true;
-          merge_key    := v_second.key;
-          merge_ge     := push_ge_top;
-          merge_pix    := top_ge_pix;
+          o.takeover   := '1';
           v_top.runs   := v_second.runs;
-          v_top.head   := v_second.head;
-          v_top.tail   := v_second.tail;
           v_top.merged := '1';
         end if;
       end if;
 
       -- 4. The pixel joins its run's class.
       if cstep = '1' and c0 = '1' and cm = '1' then
-        if v_att = '1' then
-          pix_to_top := true;
-        else
-          if not cur_ge_pix then
-            v_key := pix;
-          end if;
-        end if;
+        o.pix_top := v_att;
+        o.pix_cur := not v_att;
       end if;
-      v_top.key := best3(v_top.key, merge_en, merge_key, pix_to_top, pix, merge_ge,
-                         (pushed and push_ge_pix) or (not pushed and top_ge_pix), merge_pix);
 
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
-      -- Its finalize is written after a pop's (below): at a row's last column
-      -- the second write waits a clock in the spare register, and the pop's
-      -- can be to slot 0, which the next row's column 1 reads then.
-      cur_ends := false;
-      ended    := (last => '0', runs => '1', head => v_head, tail => v_tail, merged => '0', key => v_key);
       if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
-        cur_ends := v_att = '0';
-        v_act    := '0';
-        v_att    := '0';
+        o.cur_final := not v_att;
+        v_act       := '0';
+        v_att       := '0';
       end if;
 
       -- 6. A previous-row run ends: the last run of its class pops it.
+      run_last := v_top.last;
       if p_end and run_last = '1' then
+        o.pop    := '1';
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
         v_depth  := v_depth - 1;
         if v_depth >= 3 then
-          stack_re  <= '1';
-          stack_ra  <= resize(v_depth - 3, stack_ra'length);
-          third_rd1 <= '1';
+          flags_re   <= '1';
+          flags_ra   <= resize(v_depth - 3, flags_ra'length);
+          third_rd1  <= '1';
+          o.pop_ram  := '1';
+          o.ram_ra   := resize(v_depth - 3, o.ram_ra'length);
         end if;
         if popped.merged = '1' then
-          v_top.key  := popped.key;
-          v_top.runs := popped.runs;
-          v_top.head := popped.head;
-          v_top.tail := popped.tail;
+          o.pop_merged := '1';
+          v_top.runs   := popped.runs;
         elsif v_act = '1' and v_att = '1' then
-          v_key  := popped.key;
-          v_head := popped.head;
-          v_tail := popped.tail;
-          v_att  := '0';
+          o.pop_detach := '1';
+          v_att        := '0';
         elsif popped.runs = '1' then
-          finalize(popped.head, popped.tail, popped.key);
+          o.pop_final := '1';
         else
-          emit     := true;
-          emit_key := popped.key;
+          o.pop_emit := '1';
         end if;
-      end if;
-      if cur_ends then
-        finalize(ended.head, ended.tail, ended.key);
       end if;
 
       if cstep = '1' and c_eol then
@@ -867,9 +825,6 @@ begin
       assert not (v_depth > STACK_DEPTH)
         report "fastnms_nms_region: stack overflow"
         severity failure;
-      -- synthesis translate_on
-
-      -- synthesis translate_off
       assert not (lock = '1' and c_eol and v_depth /= 0)
         report "fastnms_nms_region: classes left open at the end of a row"
         severity failure;
@@ -879,9 +834,6 @@ begin
       second   <= v_second;
       third    <= v_third;
       depth    <= v_depth;
-      c_key    <= v_key;
-      c_head   <= v_head;
-      c_tail   <= v_tail;
       attached <= v_att;
       active   <= v_act;
 
@@ -911,8 +863,6 @@ begin
       if cstep = '1' and c_eol then
         cur_bank <= not cur_bank;
       end if;
-      data_ahead <= ahead_next(data_ahead, data_w.en, data_w.addr & '0', word_t(data_w.data),
-                               rstep, ahead_slot & '0', data_rd);
       head_ahead <= ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
                                rstep, ahead_slot & r_bank, word(head_rd(0)));
       last_ahead <= ahead_next(last_ahead, last_w.en, last_w.addr, word(last_w.data),
@@ -926,6 +876,8 @@ begin
         rcol    <= r_next;
         r_slot0 <= r_last or r_col0;
         r_col0  <= r_last;
+        r_col1  <= r_col0;
+        r_col2  <= r_col1;
         if r_ahead = r_lastcol then
           r_ahead <= (others => '0');
         else
@@ -946,6 +898,8 @@ begin
         rcol      <= (others => '0');
         r_slot0   <= '1';
         r_col0    <= '1';
+        r_col1    <= '0';
+        r_col2    <= '0';
         r_ahead   <= to_unsigned(2, XB);
         r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
@@ -988,8 +942,8 @@ begin
       -- on the next clock when frames come back to back.
       eof_step := cstep = '1' and px_eof = '1';
       if flush_ends then
-        flushing    <= '0';
-        eof_pending <= '1';
+        flushing     <= '0';
+        o.flush_ends := '1';
       end if;
       if eof_step then
         if (flushing = '0' or flush_ends) and v_primed = '1' then
@@ -1013,66 +967,14 @@ begin
         prime_st <= to_unsigned(1, 2);
       end if;
 
-      -- Table writes: the step's first now, a second one on the next clock
-      -- (only the last column of a row makes two; the next clock's step
-      -- writes nothing).
-      if data_spare.en = '1' then
-        data_w        <= data_spare;
-        data_w0       <= spare_w0;
-        data_spare.en <= '0';
-      else
-        data_w     <= dw1;
-        data_w0    <= to_sl(dw1.addr = 0);
-        data_spare <= dw2;
-        spare_w0   <= to_sl(dw2.addr = 0);
-      end if;
-      if head_spare.en = '1' then
-        head_w     <= head_spare;
-        head_spare <= NO_BIT_WRITE;
-      else
-        head_w     <= hw1;
-        head_spare <= hw2;
-      end if;
-      if last_spare.en = '1' then
-        last_w     <= last_spare;
-        last_spare <= NO_BIT_WRITE;
-      else
-        last_w     <= lw1;
-        last_spare <= lw2;
-      end if;
-
-      -- synthesis translate_off
-      assert not ((data_spare.en = '1' and dw1.en = '1') or (head_spare.en = '1' and hw1.en = '1') or
-                  (last_spare.en = '1' and lw1.en = '1'))
-        report "fastnms_nms_region: table writes on consecutive clocks"
-        severity failure;
-      -- synthesis translate_on
-
-      -- Records: a closed region, or the end-of-frame beat in a clock
-      -- without one.
-      rec_valid <= '0';
-      if emit then
-        rec_valid <= '1';
-        rec_eof   <= '0';
-        rec_x     <= not emit_key(XB - 1 downto 0);
-        rec_y     <= not emit_key(XB + YB - 1 downto XB);
-        rec_score <= emit_key(KB - 1 downto XB + YB);
-      elsif eof_pending = '1' and rec_room = '1' then
-        -- Separate narrow registers: GHDL's Verilog output writes a constant
-        -- vector of more than 32 bits as a string (ASCII digits).
-        rec_valid   <= '1';
-        rec_eof     <= '1';
-        rec_x       <= (others => '1');
-        rec_y       <= (others => '1');
-        rec_score   <= (others => '0');
-        eof_pending <= '0';
-      end if;
 
       -- synthesis translate_off
       assert not (cstep = '1' and frame_start = '1' and px_sof = '0')
         report "fastnms_nms_region: a frame's first pixel without in_sof"
         severity error;
       -- synthesis translate_on
+
+      op <= o;
 
       if rst = '1' then
         depth         <= (others => '0');
@@ -1094,12 +996,381 @@ begin
         primed        <= '0';
         holds0        <= '0';
         prime_st      <= (others => '0');
+        flags_we      <= '0';
+        flags_re      <= '0';
+        third_rd1     <= '0';
+        third_rd2     <= '0';
+        fix_last      <= '0';
+        head_ahead    <= AHEAD_RESET;
+        last_ahead    <= AHEAD_RESET;
+        r_slot0       <= '1';
+        r_col0        <= '1';
+        r_col1        <= '0';
+        r_col2        <= '0';
+        cur_bank      <= '0';
+        r_bank        <= '0';
+        op.push       <= '0';
+        op.push_ram   <= '0';
+        op.start      <= '0';
+        op.attach     <= '0';
+        op.takeover   <= '0';
+        op.pix_top    <= '0';
+        op.pix_cur    <= '0';
+        op.cur_final  <= '0';
+        op.pop        <= '0';
+        op.pop_ram    <= '0';
+        op.rstep      <= '0';
+        op.flush_ends <= '0';
+      end if;
+    end if;
+
+  end process control;
+
+  -- The data path: the slots and keys of the column the control stepped on
+  -- the clock before (op), with the same operations in the same order; the
+  -- table writes, the stack's slots and keys, the records.
+  apply : process (clk) is
+
+    variable v_top     : entry_t;
+    variable v_second  : entry_t;
+    variable v_third   : entry_t;
+    variable v_key     : key_t;
+    variable v_head    : slot_t;
+    variable v_tail    : slot_t;
+    variable popped    : entry_t;
+    variable ended     : entry_t; -- the current run's class, when it ends alone
+    variable pix       : key_t;
+    variable dw1       : data_write_t;
+    variable dw2       : data_write_t;
+    variable hw1       : bit_write_t;
+    variable hw2       : bit_write_t;
+    variable lw1       : bit_write_t;
+    variable lw2       : bit_write_t;
+    variable emit      : boolean;
+    variable emit_key  : key_t;
+    variable merge_en  : boolean; -- the top's class takes merge_key ...
+    variable merge_key : key_t;
+    variable merge_ge  : boolean; -- its key >= merge_key
+    variable merge_pix : boolean; -- merge_key >= the pixel
+    variable pushed    : boolean;
+    variable data_now  : key_t;
+    variable landing   : boolean; -- data_now is the write landing now
+    -- Key comparisons on registers: the top's key (top), the key of a pushed
+    -- class (push), the current class's (cur), the pixel's score (pix).
+    variable top_ge_cur  : boolean;
+    variable push_ge_cur : boolean;
+    variable push_ge_top : boolean;
+    variable top_ge_pix  : boolean;
+    variable push_ge_pix : boolean;
+    variable cur_ge_pix  : boolean;
+
+    procedure add_data_write (
+      addr : slot_t;
+      data : key_t
+    ) is
+    begin
+
+      if dw1.en = '0' then
+        dw1 := (en => '1', addr => addr, data => data);
+      else
+        dw2 := (en => '1', addr => addr, data => data);
+      end if;
+
+    end procedure add_data_write;
+
+    procedure add_head_write (
+      slot : slot_t;
+      data : std_logic
+    ) is
+    begin
+
+      -- In the current row's bank.
+      if hw1.en = '0' then
+        hw1 := (en => '1', addr => slot & op.bank, data => data);
+      else
+        hw2 := (en => '1', addr => slot & op.bank, data => data);
+      end if;
+
+    end procedure add_head_write;
+
+    procedure add_last_write (
+      slot : slot_t;
+      data : std_logic
+    ) is
+    begin
+
+      if lw1.en = '0' then
+        lw1 := (en => '1', addr => slot & '0', data => data);
+      else
+        lw2 := (en => '1', addr => slot & '0', data => data);
+      end if;
+
+    end procedure add_last_write;
+
+    procedure finalize (
+      head : slot_t;
+      tail : slot_t;
+      key  : key_t
+    ) is
+    begin
+
+      -- The class has all its current-row runs: its key waits at its first
+      -- run's slot, which is marked first, and its latest run is marked last.
+      add_data_write(head, key);
+      add_head_write(head, '1');
+      add_last_write(tail, '1');
+
+    end procedure finalize;
+
+    function slot_is (a : bit_addr_t; n : natural) return std_logic is
+    begin
+
+      return to_sl(a(SB downto 1) = n);
+
+    end function slot_is;
+
+  begin
+
+    if rising_edge(clk) then
+      v_top    := d_top;
+      v_second := d_second;
+      v_third  := d_third;
+      v_key    := c_key;
+      v_head   := c_head;
+      v_tail   := c_tail;
+      dw1      := (en => '0', addr => c_head, data => c_key);
+      dw2      := dw1;
+      hw1      := NO_BIT_WRITE;
+      hw2      := NO_BIT_WRITE;
+      lw1      := NO_BIT_WRITE;
+      lw2      := NO_BIT_WRITE;
+      emit     := false;
+      emit_key := d_top.key;
+      pushed   := op.push = '1';
+      merge_en := false;
+      merge_key := c_key;
+      merge_ge  := false;
+      merge_pix := false;
+
+      -- The stack RAM's word below the second entry, two clocks after a pop.
+      if d_third_rd2 = '1' then
+        v_third := unpack(stack_rd);
+      end if;
+      d_third_rd2 <= d_third_rd1;
+      d_third_rd1 <= '0';
+      stack_we    <= '0';
+      stack_re    <= '0';
+
+      pix := op.score & not op.cy & not op.cx;
+
+      -- A key landing now is the previous row's last (slot 0, for column 0):
+      -- flagged a clock ahead (data_w0) to keep the compare off the key path.
+      -- Both candidates are compared, and the flag picks a result: the
+      -- selection stays off the compares' inputs.
+      data_now := unsigned(data_ahead.word2);
+      landing  := data_w.en = '1' and data_w0 = '1' and op.r_col0 = '1';
+      if landing then
+        data_now := data_w.data;
+      end if;
+      top_ge_cur := d_top.key >= c_key;
+      -- The pixel comes after every pixel of a class in raster order, so it
+      -- wins only with a higher score.
+      top_ge_pix := score_of(d_top.key) >= op.score;
+      cur_ge_pix := score_of(c_key) >= op.score;
+      if landing then
+        push_ge_cur := data_w.data >= c_key;
+        push_ge_top := data_w.data >= d_top.key;
+        push_ge_pix := score_of(data_w.data) >= op.score;
+      else
+        push_ge_cur := unsigned(data_ahead.word2) >= c_key;
+        push_ge_top := unsigned(data_ahead.word2) >= d_top.key;
+        push_ge_pix := score_of(unsigned(data_ahead.word2)) >= op.score;
+      end if;
+
+      -- synthesis translate_off
+      assert not (pushed and data_w.en = '1' and (data_w.addr & '0') = data_ahead.addr2 and
+                  (op.r_col0 = '0' or data_w0 = '0'))
+        report "fastnms_nms_region: a key written as the reader takes it"
+        severity failure;
+      -- synthesis translate_on
+
+      -- 1. A pushed class: its key from the data table.
+      if pushed then
+        if op.push_ram = '1' then
+          stack_we    <= '1';
+          stack_wa    <= op.ram_wa;
+          stack_wd    <= pack(v_second);
+          v_third     := v_second;
+          d_third_rd1 <= '0';
+          d_third_rd2 <= '0';
+        end if;
+        v_second := v_top;
+        v_top    := (head => (others => '0'), tail => (others => '0'), key => data_now);
+      end if;
+
+      -- 2. A current-row run starts: a class of its own for now.
+      if op.start = '1' then
+        v_key  := pix;
+        v_head := slot_of(op.cx);
+        v_tail := slot_of(op.cx);
+      end if;
+
+      -- 3. The current run's class joins the top's, or the pushed class
+      -- takes over the one below.
+      if op.attach = '1' then
+        if op.attach_runs = '0' then
+          v_top.head := v_head;
+        else
+          -- The class's latest run is no longer its last, this run's class
+          -- no longer starts at its own first run.
+          add_last_write(v_top.tail, '0');
+          add_head_write(v_head, '0');
+        end if;
+        v_top.tail := v_tail;
+        merge_en   := true;
+        merge_key  := v_key;
+        if op.start = '1' then -- the class is the pixel
+          merge_ge := (pushed and push_ge_pix) or (not pushed and top_ge_pix);
+        else
+          merge_ge  := (pushed and push_ge_cur) or (not pushed and top_ge_cur);
+          merge_pix := cur_ge_pix;
+        end if;
+      elsif op.takeover = '1' then
+        merge_en   := true;
+        merge_key  := v_second.key;
+        merge_ge   := push_ge_top;
+        merge_pix  := top_ge_pix;
+        v_top.head := v_second.head;
+        v_top.tail := v_second.tail;
+      end if;
+
+      -- 4. The pixel joins its run's class.
+      if op.pix_cur = '1' and not cur_ge_pix then
+        v_key := pix;
+      end if;
+      v_top.key := best3(v_top.key, merge_en, merge_key, op.pix_top = '1', pix, merge_ge,
+                         (pushed and push_ge_pix) or (not pushed and top_ge_pix), merge_pix);
+
+      -- 5. The current run's class, if it ends alone: finalized after a
+      -- pop's (below): at a row's last column the second write waits a
+      -- clock in the spare register, and the pop's can be to slot 0, which
+      -- the next row's column 1 reads then.
+      ended := (head => v_head, tail => v_tail, key => v_key);
+
+      -- 6. The top pops.
+      if op.pop = '1' then
+        popped   := v_top;
+        v_top    := v_second;
+        v_second := v_third;
+        if op.pop_ram = '1' then
+          stack_re    <= '1';
+          stack_ra    <= op.ram_ra;
+          d_third_rd1 <= '1';
+        end if;
+        if op.pop_merged = '1' then
+          v_top := popped;
+        elsif op.pop_detach = '1' then
+          v_key  := popped.key;
+          v_head := popped.head;
+          v_tail := popped.tail;
+        elsif op.pop_final = '1' then
+          finalize(popped.head, popped.tail, popped.key);
+        else
+          emit     := true;
+          emit_key := popped.key;
+        end if;
+      end if;
+      if op.cur_final = '1' then
+        finalize(ended.head, ended.tail, ended.key);
+      end if;
+
+      d_top    <= v_top;
+      d_second <= v_second;
+      d_third  <= v_third;
+      c_key    <= v_key;
+      c_head   <= v_head;
+      c_tail   <= v_tail;
+
+      data_ahead <= ahead_next(data_ahead, data_w.en, data_w.addr & '0', word_t(data_w.data),
+                               op.rstep, op.ahead_slot & '0', data_rd);
+
+      -- Table writes: the step's first now, a second one on the next clock
+      -- (only the last column of a row makes two; the next clock's step
+      -- writes nothing).
+      if data_spare.en = '1' then
+        data_w        <= data_spare;
+        data_w0       <= spare_w0;
+        data_spare.en <= '0';
+      else
+        data_w     <= dw1;
+        data_w0    <= to_sl(dw1.addr = 0);
+        data_spare <= dw2;
+        spare_w0   <= to_sl(dw2.addr = 0);
+      end if;
+      if head_spare.en = '1' then
+        head_w     <= head_spare;
+        head_w_s1  <= head_spare_s1;
+        head_spare <= NO_BIT_WRITE;
+      else
+        head_w        <= hw1;
+        head_w_s1     <= slot_is(hw1.addr, 1);
+        head_spare    <= hw2;
+        head_spare_s1 <= slot_is(hw2.addr, 1);
+      end if;
+      if last_spare.en = '1' then
+        last_w     <= last_spare;
+        last_w_s0  <= last_spare_s0;
+        last_w_s1  <= last_spare_s1;
+        last_spare <= NO_BIT_WRITE;
+      else
+        last_w        <= lw1;
+        last_w_s0     <= slot_is(lw1.addr, 0);
+        last_w_s1     <= slot_is(lw1.addr, 1);
+        last_spare    <= lw2;
+        last_spare_s0 <= slot_is(lw2.addr, 0);
+        last_spare_s1 <= slot_is(lw2.addr, 1);
+      end if;
+
+      -- synthesis translate_off
+      assert not ((data_spare.en = '1' and dw1.en = '1') or (head_spare.en = '1' and hw1.en = '1') or
+                  (last_spare.en = '1' and lw1.en = '1'))
+        report "fastnms_nms_region: table writes on consecutive clocks"
+        severity failure;
+      assert not (last_spare.en = '0' and lw2.en = '1' and lw2.addr(SB downto 1) = 0)
+        report "fastnms_nms_region: a second last-bit write to slot 0"
+        severity failure;
+      -- synthesis translate_on
+
+      -- Records: a closed region, or the end-of-frame beat in a clock
+      -- without one (after the flush's last column's record, if any).
+      rec_valid <= '0';
+      if op.flush_ends = '1' then
+        eof_pending <= '1';
+      end if;
+      if emit then
+        rec_valid <= '1';
+        rec_eof   <= '0';
+        rec_x     <= not emit_key(XB - 1 downto 0);
+        rec_y     <= not emit_key(XB + YB - 1 downto XB);
+        rec_score <= emit_key(KB - 1 downto XB + YB);
+      elsif eof_pending = '1' and rec_room = '1' then
+        -- Separate narrow registers: GHDL's Verilog output writes a constant
+        -- vector of more than 32 bits as a string (ASCII digits).
+        rec_valid   <= '1';
+        rec_eof     <= '1';
+        rec_x       <= (others => '1');
+        rec_y       <= (others => '1');
+        rec_score   <= (others => '0');
+        eof_pending <= op.flush_ends;
+      end if;
+
+      if rst = '1' then
         eof_pending   <= '0';
         rec_valid     <= '0';
         stack_we      <= '0';
         stack_re      <= '0';
-        third_rd1     <= '0';
-        third_rd2     <= '0';
+        d_third_rd1   <= '0';
+        d_third_rd2   <= '0';
         data_w.en     <= '0';
         data_spare.en <= '0';
         head_w        <= NO_BIT_WRITE;
@@ -1107,16 +1378,10 @@ begin
         last_w        <= NO_BIT_WRITE;
         last_spare    <= NO_BIT_WRITE;
         data_ahead    <= AHEAD_RESET;
-        head_ahead    <= AHEAD_RESET;
-        last_ahead    <= AHEAD_RESET;
-        r_slot0       <= '1';
-        r_col0        <= '1';
-        cur_bank      <= '0';
-        r_bank        <= '0';
       end if;
     end if;
 
-  end process step;
+  end process apply;
 
   row_memory : entity work.fastnms_ram_sdp
     generic map (
@@ -1143,8 +1408,8 @@ begin
       wr_en   => data_w.en,
       wr_addr => resize(data_w.addr, clog2(SLOTS)),
       wr_data => std_logic_vector(data_w.data),
-      rd_en   => rstep,
-      rd_addr => resize(ahead_slot, clog2(SLOTS)),
+      rd_en   => op.rstep,
+      rd_addr => resize(op.ahead_slot, clog2(SLOTS)),
       rd_data => data_rd
     );
 
@@ -1181,6 +1446,23 @@ begin
       rd_data => last_rd
     );
 
+  -- Three bits per word: LUT RAM.
+  stack_flags : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => STACK_WORDS,
+      WIDTH => FLAG_BITS,
+      STYLE => "distributed"
+    )
+    port map (
+      clk     => clk,
+      wr_en   => flags_we,
+      wr_addr => flags_wa,
+      wr_data => flags_wd,
+      rd_en   => flags_re,
+      rd_addr => flags_ra,
+      rd_data => flags_rd
+    );
+
   stack_memory : entity work.fastnms_ram_sdp
     generic map (
       DEPTH => STACK_WORDS,
@@ -1207,7 +1489,8 @@ begin
       rst       => rst,
       in_valid  => rec_valid,
       in_ready  => open,
-      in_room2  => rec_room,
+      in_room2  => open,
+      in_room3  => rec_room,
       in_spare  => open,
       in_data   => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
                    std_logic_vector(rec_score),
