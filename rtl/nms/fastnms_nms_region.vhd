@@ -151,9 +151,10 @@ architecture rtl of fastnms_nms_region is
     pop_detach  : std_logic; -- ... goes on as the current run's class
     pop_final   : std_logic; -- ... is finalized
     pop_emit    : std_logic; -- ... closes: its record leaves
+    rv          : std_logic; -- the reader stepped: its operations count
+    cv          : std_logic; -- the current row stepped: its operations count
     bank        : std_logic; -- the current row's head table bank
-    rstep       : std_logic; -- the reader stepped (the data table's read)
-    r_col0      : std_logic; -- ... at its row's column 0
+    r_col0      : std_logic; -- the reader's column 0
     ahead_slot  : slot_t;    -- ... reading this slot
     flush_ends  : std_logic; -- a flush's last column: the end-of-frame beat is due
     score       : unsigned(SCORE_BITS - 1 downto 0);
@@ -349,6 +350,12 @@ architecture rtl of fastnms_nms_region is
   -- Stack flags (the control's): top, second, and a copy of the flag RAM's
   -- word below them (refreshed two clocks after a pop: third_rd1, third_rd2).
   signal depth     : unsigned(DB - 1 downto 0);
+  -- depth - 2, - 3 and - 4 beside it, so that the stack RAMs' addresses and
+  -- the tests on the depth are registers (a sign bit each), not arithmetic
+  -- after the step's decisions; depth itself is for the assertions.
+  signal below2 : signed(DB downto 0);
+  signal below3 : signed(DB downto 0);
+  signal below4 : signed(DB downto 0);
   signal top       : flags_t;
   signal second    : flags_t;
   signal third     : flags_t;
@@ -584,7 +591,10 @@ begin
     variable v_top    : flags_t;
     variable v_second : flags_t;
     variable v_third  : flags_t;
+    variable pre_top   : flags_t;
+    variable pre_third : flags_t;
     variable v_depth  : unsigned(DB - 1 downto 0);
+    variable below    : signed(DB downto 0);
     variable v_att    : std_logic;
     variable v_act    : std_logic;
     variable popped   : flags_t;
@@ -611,23 +621,28 @@ begin
   begin
 
     if rising_edge(clk) then
-      v_top    := top;
+      -- The stack's flags before this clock's step: the flag RAM's word
+      -- below the second entry (two clocks after a pop), and a last bit
+      -- taken at column 0 on the clock before, which the previous row's
+      -- last column may rewrite then (the data path writes a clock after the
+      -- control decides): that write is in last_w now.
+      pre_third := third;
+      if third_rd2 = '1' then
+        pre_third := unpack(flags_rd);
+      end if;
+      pre_top := top;
+      if fix_last = '1' and last_w.en = '1' and last_w_s0 = '1' then
+        pre_top.last := last_w.data;
+      end if;
+      v_third  := pre_third;
+      v_top    := pre_top;
       v_second := second;
-      v_third  := third;
       v_depth  := depth;
       v_att    := attached;
       v_act    := active;
       pushed   := false;
       touch    := false;
-
-      -- The flag RAM's word below the second entry, two clocks after a pop.
-      if third_rd2 = '1' then
-        v_third := unpack(flags_rd);
-      end if;
-      third_rd2 <= third_rd1;
-      third_rd1 <= '0';
-      flags_we  <= '0';
-      flags_re  <= '0';
+      below    := below3;
 
       c0    := px_corner;
       r_eol := r_last = '1';
@@ -650,8 +665,9 @@ begin
       o.pop_final   := '0';
       o.pop_emit    := '0';
       o.flush_ends  := '0';
+      o.rv          := rstep;
+      o.cv          := cstep;
       o.bank        := cur_bank;
-      o.rstep       := rstep;
       o.r_col0      := r_col0;
       o.ahead_slot  := ahead_slot;
       o.score       := px_score;
@@ -673,23 +689,28 @@ begin
       assert not (lock = '1' and rcol /= cx)
         report "fastnms_nms_region: reader and current row out of step"
         severity failure;
+      assert not (lock = '1' and rstep /= cstep)
+        report "fastnms_nms_region: a lock-step row with one side stepping"
+        severity failure;
       -- synthesis translate_on
 
-      -- A last bit taken at column 0 on the clock before: the previous row's
-      -- last column's write to slot 0, if any, is in last_w now.
-      if fix_last = '1' and last_w.en = '1' and last_w_s0 = '1' then
-        v_top.last := last_w.data;
-      end if;
+      -- The step's decisions are made as if both sides stepped, from
+      -- registers only: the reader's state (the stack) takes them when the
+      -- reader steps (rstep), the current row's (attached, active) when the
+      -- current row steps (cstep), and the data path gets both enables with
+      -- the operation. Rows >= 1 step both sides together; a first row has
+      -- no reader events, a flush no current row (first_row, a register,
+      -- says which).
 
-      -- The bits of the previous-row run at rcol, from registers. The table
-      -- writes land a clock after the step that decides them, so the
-      -- previous row's last writes can land as the next row takes their
-      -- words: at columns 0 and 1 (slot 0; its head bit is known, the run
-      -- is the row's first) and at column 2 (slot 1, the last column's
-      -- second write). Flags registered with each write say so; the
-      -- assertions below check that no other write lands on a word taken.
-      p_start   := rstep = '1' and p0 = '1' and pm = '0';
-      p_end     := rstep = '1' and ((pm = '1' and p0 = '0') or (p0 = '1' and r_eol));
+      -- The bits of the previous-row run at rcol. The table writes land a
+      -- clock after the step that decides them, so the previous row's last
+      -- writes can land as the next row takes their words: at columns 0
+      -- and 1 (slot 0; its head bit is known, the run is the row's first)
+      -- and at column 2 (slot 1, the last column's second write). Flags
+      -- registered with each write say so; the assertions below check that
+      -- no other write lands on a word taken.
+      p_start   := p0 = '1' and pm = '0';
+      p_end     := (pm = '1' and p0 = '0') or (p0 = '1' and r_eol);
       fwd_last0 := last_w.en = '1' and last_w_s0 = '1' and r_slot0 = '1';
       fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';
       fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
@@ -704,12 +725,12 @@ begin
       end if;
 
       -- synthesis translate_off
-      assert not (p_start and r_slot0 = '0' and head_w.en = '1' and
+      assert not (rstep = '1' and p_start and r_slot0 = '0' and head_w.en = '1' and
                   head_w.addr = head_ahead.addr2 and not fwd_head1)
         report "fastnms_nms_region: a head bit written as the reader takes it"
         severity failure;
-      assert not (p_start and last_w.en = '1' and last_w.addr = last_ahead.addr2 and
-                  not (fwd_last0 or fwd_last1))
+      assert not (rstep = '1' and p_start and last_w.en = '1' and
+                  last_w.addr = last_ahead.addr2 and not (fwd_last0 or fwd_last1))
         report "fastnms_nms_region: a last bit written as the reader takes it"
         severity failure;
       assert not ((fwd_last0 or fwd_last1) and last_w.addr /= last_ahead.addr2)
@@ -718,7 +739,7 @@ begin
       assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
         report "fastnms_nms_region: head_w_s1 out of step"
         severity failure;
-      assert not (p_start and run_head = '0' and v_depth = 0)
+      assert not (rstep = '1' and p_start and run_head = '0' and v_depth = 0)
         report "fastnms_nms_region: a continuing run without an open class"
         severity failure;
       -- synthesis translate_on
@@ -729,16 +750,11 @@ begin
         if run_head = '0' then
           v_top.last := last_now;
         else
-          o.push := '1';
-          if v_depth >= 2 then
-            flags_we    <= '1';
-            flags_wa    <= resize(v_depth - 2, flags_wa'length);
-            flags_wd    <= pack(v_second);
-            o.push_ram  := '1';
-            o.ram_wa    := resize(v_depth - 2, o.ram_wa'length);
-            v_third     := v_second;
-            third_rd1   <= '0';
-            third_rd2   <= '0';
+          o.push     := '1';
+          o.push_ram := not below2(DB);
+          o.ram_wa   := resize(unsigned(below2(DB - 1 downto 0)), o.ram_wa'length);
+          if below2 >= 0 then
+            v_third := v_second;
           end if;
           v_second := v_top;
           v_top    := (last => last_now, runs => '0', merged => '0');
@@ -746,18 +762,17 @@ begin
           pushed   := true;
         end if;
       end if;
-      fix_last <= to_sl(p_start and r_col0 = '1');
 
       -- 2. A current-row run starts: a class of its own for now.
-      run_starts := cstep = '1' and c0 = '1' and cm = '0';
+      run_starts := c0 = '1' and cm = '0';
       if run_starts then
         o.start := '1';
         v_att   := '0';
         v_act   := '1';
       end if;
 
-      -- 3. Contact between the current run and the top's run.
-      if lock = '1' then
+      -- 3. Contact between the current run and the top's run (rows >= 1).
+      if first_row = '0' then
         touch := (c0 = '1' and p0 = '1') or
                  (CONNECTIVITY = 8 and ((c0 = '1' and pm = '1') or (cm = '1' and p0 = '1')));
       end if;
@@ -776,19 +791,21 @@ begin
       end if;
 
       -- 4. The pixel joins its run's class.
-      if cstep = '1' and c0 = '1' and cm = '1' then
+      if c0 = '1' and cm = '1' then
         o.pix_top := v_att;
         o.pix_cur := not v_att;
       end if;
 
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
-      if cstep = '1' and ((cm = '1' and c0 = '0') or (c0 = '1' and c_eol)) then
+      if (cm = '1' and c0 = '0') or (c0 = '1' and c_eol) then
         o.cur_final := not v_att;
         v_act       := '0';
         v_att       := '0';
       end if;
 
-      -- 6. A previous-row run ends: the last run of its class pops it.
+      -- 6. A previous-row run ends: the last run of its class pops it. (In
+      -- a flush, the current row's attached is '0': a first row has no
+      -- contact.)
       run_last := v_top.last;
       if p_end and run_last = '1' then
         o.pop    := '1';
@@ -796,17 +813,17 @@ begin
         v_top    := v_second;
         v_second := v_third;
         v_depth  := v_depth - 1;
-        if v_depth >= 3 then
-          flags_re   <= '1';
-          flags_ra   <= resize(v_depth - 3, flags_ra'length);
-          third_rd1  <= '1';
-          o.pop_ram  := '1';
-          o.ram_ra   := resize(v_depth - 3, o.ram_ra'length);
+        -- The word below the new second entry: at depth - 3 after a push in
+        -- the same column (a one-pixel run at the row's end), else depth - 4.
+        if not pushed then
+          below := below4;
         end if;
+        o.pop_ram := not below(DB);
+        o.ram_ra  := resize(unsigned(below(DB - 1 downto 0)), o.ram_ra'length);
         if popped.merged = '1' then
           o.pop_merged := '1';
           v_top.runs   := popped.runs;
-        elsif v_act = '1' and v_att = '1' then
+        elsif v_act = '1' and v_att = '1' and first_row = '0' then
           o.pop_detach := '1';
           v_att        := '0';
         elsif popped.runs = '1' then
@@ -816,26 +833,58 @@ begin
         end if;
       end if;
 
-      if cstep = '1' and c_eol then
+      if c_eol then
         v_act := '0';
         v_att := '0';
       end if;
 
+      -- The reader's side.
+      flags_we  <= rstep and o.push_ram;
+      flags_wa  <= o.ram_wa;
+      flags_wd  <= pack(second);
+      flags_re  <= rstep and o.pop and o.pop_ram;
+      flags_ra  <= o.ram_ra;
+      fix_last  <= rstep and to_sl(p_start) and r_col0;
+      third_rd2 <= third_rd1 and not (rstep and o.push_ram);
+      third_rd1 <= rstep and o.pop and o.pop_ram;
+      if rstep = '1' then
+        top    <= v_top;
+        second <= v_second;
+        third  <= v_third;
+        depth  <= v_depth;
+        if o.push = '1' and o.pop = '0' then
+          below2 <= below2 + 1;
+          below3 <= below2;
+          below4 <= below3;
+        elsif o.pop = '1' and o.push = '0' then
+          below2 <= below3;
+          below3 <= below4;
+          below4 <= below4 - 1;
+        end if;
+      else
+        top   <= pre_top;
+        third <= pre_third;
+      end if;
+
       -- synthesis translate_off
-      assert not (v_depth > STACK_DEPTH)
+      assert not (rstep = '1' and v_depth > STACK_DEPTH)
         report "fastnms_nms_region: stack overflow"
+        severity failure;
+      assert not checks_on or rst = '1' or
+             (below2 = signed('0' & depth) - 2 and below3 = signed('0' & depth) - 3 and
+              below4 = signed('0' & depth) - 4)
+        report "fastnms_nms_region: below2, below3 or below4 out of step with the depth"
         severity failure;
       assert not (lock = '1' and c_eol and v_depth /= 0)
         report "fastnms_nms_region: classes left open at the end of a row"
         severity failure;
       -- synthesis translate_on
 
-      top      <= v_top;
-      second   <= v_second;
-      third    <= v_third;
-      depth    <= v_depth;
-      attached <= v_att;
-      active   <= v_act;
+      -- The current row's side.
+      if cstep = '1' then
+        attached <= v_att;
+        active   <= v_act;
+      end if;
 
       -- Current row position.
       if cstep = '1' then
@@ -978,6 +1027,9 @@ begin
 
       if rst = '1' then
         depth         <= (others => '0');
+        below2        <= to_signed(-2, DB + 1);
+        below3        <= to_signed(-3, DB + 1);
+        below4        <= to_signed(-4, DB + 1);
         attached      <= '0';
         active        <= '0';
         cm            <= '0';
@@ -1019,7 +1071,8 @@ begin
         op.cur_final  <= '0';
         op.pop        <= '0';
         op.pop_ram    <= '0';
-        op.rstep      <= '0';
+        op.rv         <= '0';
+        op.cv         <= '0';
         op.flush_ends <= '0';
       end if;
     end if;
@@ -1146,7 +1199,7 @@ begin
       lw2      := NO_BIT_WRITE;
       emit     := false;
       emit_key := d_top.key;
-      pushed   := op.push = '1';
+      pushed   := op.push = '1' and op.rv = '1';
       merge_en := false;
       merge_key := c_key;
       merge_ge  := false;
@@ -1209,7 +1262,7 @@ begin
       end if;
 
       -- 2. A current-row run starts: a class of its own for now.
-      if op.start = '1' then
+      if op.start = '1' and op.cv = '1' then
         v_key  := pix;
         v_head := slot_of(op.cx);
         v_tail := slot_of(op.cx);
@@ -1217,7 +1270,7 @@ begin
 
       -- 3. The current run's class joins the top's, or the pushed class
       -- takes over the one below.
-      if op.attach = '1' then
+      if op.attach = '1' and op.rv = '1' then
         if op.attach_runs = '0' then
           v_top.head := v_head;
         else
@@ -1229,13 +1282,13 @@ begin
         v_top.tail := v_tail;
         merge_en   := true;
         merge_key  := v_key;
-        if op.start = '1' then -- the class is the pixel
+        if op.start = '1' then -- the class is the pixel (rows >= 1 step both sides)
           merge_ge := (pushed and push_ge_pix) or (not pushed and top_ge_pix);
         else
           merge_ge  := (pushed and push_ge_cur) or (not pushed and top_ge_cur);
           merge_pix := cur_ge_pix;
         end if;
-      elsif op.takeover = '1' then
+      elsif op.takeover = '1' and op.rv = '1' then
         merge_en   := true;
         merge_key  := v_second.key;
         merge_ge   := push_ge_top;
@@ -1245,10 +1298,10 @@ begin
       end if;
 
       -- 4. The pixel joins its run's class.
-      if op.pix_cur = '1' and not cur_ge_pix then
+      if op.pix_cur = '1' and op.cv = '1' and not cur_ge_pix then
         v_key := pix;
       end if;
-      v_top.key := best3(v_top.key, merge_en, merge_key, op.pix_top = '1', pix, merge_ge,
+      v_top.key := best3(v_top.key, merge_en, merge_key, op.pix_top = '1' and op.cv = '1', pix, merge_ge,
                          (pushed and push_ge_pix) or (not pushed and top_ge_pix), merge_pix);
 
       -- 5. The current run's class, if it ends alone: finalized after a
@@ -1258,7 +1311,7 @@ begin
       ended := (head => v_head, tail => v_tail, key => v_key);
 
       -- 6. The top pops.
-      if op.pop = '1' then
+      if op.pop = '1' and op.rv = '1' then
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
@@ -1280,7 +1333,7 @@ begin
           emit_key := popped.key;
         end if;
       end if;
-      if op.cur_final = '1' then
+      if op.cur_final = '1' and op.cv = '1' then
         finalize(ended.head, ended.tail, ended.key);
       end if;
 
@@ -1292,7 +1345,7 @@ begin
       c_tail   <= v_tail;
 
       data_ahead <= ahead_next(data_ahead, data_w.en, data_w.addr & '0', word_t(data_w.data),
-                               op.rstep, op.ahead_slot & '0', data_rd);
+                               op.rv, op.ahead_slot & '0', data_rd);
 
       -- Table writes: the step's first now, a second one on the next clock
       -- (only the last column of a row makes two; the next clock's step
@@ -1408,7 +1461,7 @@ begin
       wr_en   => data_w.en,
       wr_addr => resize(data_w.addr, clog2(SLOTS)),
       wr_data => std_logic_vector(data_w.data),
-      rd_en   => op.rstep,
+      rd_en   => op.rv,
       rd_addr => resize(op.ahead_slot, clog2(SLOTS)),
       rd_data => data_rd
     );
