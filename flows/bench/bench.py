@@ -126,10 +126,11 @@ def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
         ("last table (last run of its class?, by slot; LUT RAM)", slots, 1),
         ("data table (best key of the class, by slot; the paper's RAM score)", slots, key_bits),
         (
-            "stack of open classes (below its two registers)",
+            "stack of open classes, slots and keys (below its three registers)",
             stack_words,
-            2 * slot_bits + 3 + key_bits,
+            2 * slot_bits + key_bits,
         ),
+        ("stack of open classes, flags (LUT RAM)", stack_words, 3),
         ("record FIFO (LUT RAM)", 8, 1 + x_bits + y_bits + score_bits),
     ]
     breakdown = [{"memory": m, "words": n, "bits_per_word": b, "bits": n * b} for m, n, b in rows]

@@ -123,9 +123,9 @@ def test_region_memory_breakdown():
     table into docs/results.md)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
     # 960 slots of 10 bits; a head bit per slot and row parity, a last bit per slot; keys
-    # of 12 + 11 + 11 bits; 479 stack words of 2 x 10 + 3 + 34 bits; 8 records of
-    # 1 + 11 + 11 + 12 bits.
-    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 32640, 27303, 280]
+    # of 12 + 11 + 11 bits; 479 stack words of 2 x 10 + 34 bits (slots and key) and of
+    # 3 bits (flags); 8 records of 1 + 11 + 11 + 12 bits.
+    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 32640, 25866, 1437, 280]
     assert mem["total_bits"] == 65023
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200
