@@ -328,8 +328,8 @@ architecture rtl of fastnms_nms_region is
   signal first_row   : std_logic;
   signal frame_start : std_logic;
   signal cm          : std_logic;
-  signal attached : std_logic;
-  signal active   : std_logic;
+  signal attached    : std_logic;
+  signal active      : std_logic;
 
   -- Reader of the previous row: its column, its row's last column, the
   -- prefetched bits (pm at rcol - 1, p0 at rcol; the row memory's output is
@@ -349,13 +349,13 @@ architecture rtl of fastnms_nms_region is
 
   -- Stack flags (the control's): top, second, and a copy of the flag RAM's
   -- word below them (refreshed two clocks after a pop: third_rd1, third_rd2).
-  signal depth     : unsigned(DB - 1 downto 0);
+  signal depth : unsigned(DB - 1 downto 0);
   -- depth - 2, - 3 and - 4 beside it, so that the stack RAMs' addresses and
   -- the tests on the depth are registers (a sign bit each), not arithmetic
   -- after the step's decisions; depth itself is for the assertions.
-  signal below2 : signed(DB downto 0);
-  signal below3 : signed(DB downto 0);
-  signal below4 : signed(DB downto 0);
+  signal below2    : signed(DB downto 0);
+  signal below3    : signed(DB downto 0);
+  signal below4    : signed(DB downto 0);
   signal top       : flags_t;
   signal second    : flags_t;
   signal third     : flags_t;
@@ -588,22 +588,22 @@ begin
   -- the next clock. The reader and the clock schedule are here too.
   control : process (clk) is
 
-    variable v_top    : flags_t;
-    variable v_second : flags_t;
-    variable v_third  : flags_t;
+    variable v_top     : flags_t;
+    variable v_second  : flags_t;
+    variable v_third   : flags_t;
     variable pre_top   : flags_t;
     variable pre_third : flags_t;
-    variable v_depth  : unsigned(DB - 1 downto 0);
-    variable below    : signed(DB downto 0);
-    variable v_att    : std_logic;
-    variable v_act    : std_logic;
-    variable popped   : flags_t;
-    variable pushed   : boolean;
-    variable c0       : std_logic;
-    variable r_eol    : boolean;
-    variable c_eol    : boolean;
-    variable touch    : boolean;
-    variable o        : op_t;
+    variable v_depth   : unsigned(DB - 1 downto 0);
+    variable below     : signed(DB downto 0);
+    variable v_att     : std_logic;
+    variable v_act     : std_logic;
+    variable popped    : flags_t;
+    variable pushed    : boolean;
+    variable c0        : std_logic;
+    variable r_eol     : boolean;
+    variable c_eol     : boolean;
+    variable touch     : boolean;
+    variable o         : op_t;
 
     variable run_starts : boolean;
     variable flush_ends : boolean;
@@ -1016,7 +1016,6 @@ begin
         prime_st <= to_unsigned(1, 2);
       end if;
 
-
       -- synthesis translate_off
       assert not (cstep = '1' and frame_start = '1' and px_sof = '0')
         report "fastnms_nms_region: a frame's first pixel without in_sof"
@@ -1185,22 +1184,22 @@ begin
   begin
 
     if rising_edge(clk) then
-      v_top    := d_top;
-      v_second := d_second;
-      v_third  := d_third;
-      v_key    := c_key;
-      v_head   := c_head;
-      v_tail   := c_tail;
-      dw1      := (en => '0', addr => c_head, data => c_key);
-      dw2      := dw1;
-      hw1      := NO_BIT_WRITE;
-      hw2      := NO_BIT_WRITE;
-      lw1      := NO_BIT_WRITE;
-      lw2      := NO_BIT_WRITE;
-      emit     := false;
-      emit_key := d_top.key;
-      pushed   := op.push = '1' and op.rv = '1';
-      merge_en := false;
+      v_top     := d_top;
+      v_second  := d_second;
+      v_third   := d_third;
+      v_key     := c_key;
+      v_head    := c_head;
+      v_tail    := c_tail;
+      dw1       := (en => '0', addr => c_head, data => c_key);
+      dw2       := dw1;
+      hw1       := NO_BIT_WRITE;
+      hw2       := NO_BIT_WRITE;
+      lw1       := NO_BIT_WRITE;
+      lw2       := NO_BIT_WRITE;
+      emit      := false;
+      emit_key  := d_top.key;
+      pushed    := op.push = '1' and op.rv = '1';
+      merge_en  := false;
       merge_key := c_key;
       merge_ge  := false;
       merge_pix := false;
