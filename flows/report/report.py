@@ -73,8 +73,9 @@ AMD_BRAM18 = 8
 REASONS = {
     "paper-half": (
         "Compare the block rows below: the redesigned region NMS (one pixel per clock "
-        "for any content) takes more LUTs than the old one (its step does a whole "
-        "column in one clock, fastnms_nms_region.md, *Limits*), and the AXI top adds "
+        "for any content) takes more LUTs than the old one (a column's step in one "
+        "clock, decisions and data path a clock apart, fastnms_nms_region.md, "
+        "*Limits*), and the AXI top adds "
         "the register file, input checker, record packer and corner FIFO."
     ),
     "amd-lut": (
@@ -83,14 +84,15 @@ REASONS = {
         "not have; `fastnms_core` is the like-for-like comparison."
     ),
     "levels": (
-        "The region NMS does a whole column of the connected-components step in one "
-        "clock (from registers, but the step enable, the stack's and the current "
-        "class's decisions, the selection of the winning key and the pop's routing "
-        "of it are in one path), so yosys maps it into many more than 4 levels, and "
-        "every configuration that contains it inherits that depth "
-        "(fastnms_nms_region.md, *Limits*: the depth is spread over the step's "
-        "decisions, and in this flow a one-clock merge of two full keys alone maps "
-        "into 5 levels, `test_one_clock_key_merge_depth`). "
+        "The region NMS does a column of the connected-components step per clock, "
+        "its decisions a clock ahead of its slots and keys; its data path still "
+        "compares two keys, selects the winner and routes it through a pop in one "
+        "clock, and its reader's restarts take the step enables, so yosys maps it "
+        "into many more than 4 levels, and every configuration that contains it "
+        "inherits that depth (fastnms_nms_region.md, *Limits*: in this flow a "
+        "one-clock merge of two full keys alone maps into 5 levels, "
+        "`test_one_clock_key_merge_depth`; the decisions alone into 3, "
+        "`test_step_control_depth`). "
         "Without the region NMS the excess is one or two levels, and the same RTL "
         "maps to 4 levels in one netlist and to 5 or 6 in another (the window "
         "generator: 4 at MAX_WIDTH 3840 at every PPC, 5 at 1920x1080; the rows "
