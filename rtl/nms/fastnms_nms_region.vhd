@@ -13,6 +13,11 @@
 -- column changes only the stack's top two entries, the current run's class
 -- and one word of each table.
 --
+-- A column's step is two processes a clock apart: the control makes its
+-- decisions on flags only (the stack entries', attached, active) and
+-- registers them as the column's operation (op); the data path carries it
+-- out on the next clock (slots, keys, table writes, records).
+--
 -- Clocks: the current row steps one column per accepted pixel; rows >= 1 step
 -- the previous row's reader with it. After a frame's last pixel the reader
 -- flushes that row alone, one column per clock, while the next frame's first
@@ -154,8 +159,8 @@ architecture rtl of fastnms_nms_region is
     rv          : std_logic; -- the reader stepped: its operations count
     cv          : std_logic; -- the current row stepped: its operations count
     bank        : std_logic; -- the current row's head table bank
-    r_col0      : std_logic; -- the reader's column 0
-    ahead_slot  : slot_t;    -- ... reading this slot
+    r_col0      : std_logic; -- the reader is at its row's column 0
+    ahead_slot  : slot_t;    -- the slot the reader reads ahead (the data table's read)
     flush_ends  : std_logic; -- a flush's last column: the end-of-frame beat is due
     score       : unsigned(SCORE_BITS - 1 downto 0);
     cx          : unsigned(XB - 1 downto 0);
