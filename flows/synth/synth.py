@@ -57,6 +57,19 @@ def cell_drivers(module: dict) -> dict[int, str]:
     return drivers
 
 
+def _net_names(module: dict) -> dict[int, str]:
+    """Net bit -> its name in a module of a yosys JSON netlist, a name of the
+    RTL rather than one yosys made up ('$...') where the bit has both."""
+    names: dict[int, str] = {}
+    for name, net in module["netnames"].items():
+        for bit in net["bits"]:
+            if isinstance(bit, int):
+                old = names.get(bit)
+                if old is None or (old.startswith("$") and not name.startswith("$")):
+                    names[bit] = name
+    return names
+
+
 def _cell_depths(module: dict) -> dict[str, int]:
     """Logic cell name -> the most LUT/CARRY4/MUXF/INV cells on a path from a
     register, memory or port up to and including it."""
@@ -106,12 +119,7 @@ def levels_by_register(netlist: Path, top: str) -> dict[str, int]:
     cells = module["cells"]
     depth = _cell_depths(module)
     drivers = cell_drivers(module)
-    names: dict[int, str] = {}
-    for name, net in module["netnames"].items():
-        for bit in net["bits"]:
-            old = names.get(bit) if isinstance(bit, int) else ""
-            if isinstance(bit, int) and (old is None or (old[0] == "$" and name[0] != "$")):
-                names[bit] = name
+    names = _net_names(module)
     result: dict[str, int] = {}
     for name, cell in cells.items():
         if LOGIC_CELLS.match(cell["type"]):
@@ -142,13 +150,7 @@ def deepest_paths(netlist_json: Path, top: str, count: int = 5) -> list[list[str
     as a list 'CELLTYPE net' from the start register to the last logic cell:
     where to look when logic_levels grows."""
     module = json.loads(netlist_json.read_text())["modules"][top]
-    names: dict[int, str] = {}
-    for name, net in module["netnames"].items():
-        for bit in net["bits"]:
-            if isinstance(bit, int):
-                old = names.get(bit)
-                if old is None or (old.startswith("$") and not name.startswith("$")):
-                    names[bit] = name
+    names = _net_names(module)
     drivers = cell_drivers(module)
     cells = module["cells"]
     best: dict[str, tuple[int, str | None, int]] = {}
