@@ -156,17 +156,31 @@ architecture rtl of fastnms_nms_region is
     pop_detach  : std_logic; -- ... goes on as the current run's class
     pop_final   : std_logic; -- ... is finalized
     pop_emit    : std_logic; -- ... closes: its record leaves
-    rv          : std_logic; -- the reader stepped: its operations count
-    cv          : std_logic; -- the current row stepped: its operations count
-    bank        : std_logic; -- the current row's head table bank
-    r_col0      : std_logic; -- the reader is at its row's column 0
-    ahead_slot  : slot_t;    -- the slot the reader reads ahead (the data table's read)
-    flush_ends  : std_logic; -- a flush's last column: the end-of-frame beat is due
-    score       : unsigned(SCORE_BITS - 1 downto 0);
-    cx          : unsigned(XB - 1 downto 0);
-    cy          : unsigned(YB - 1 downto 0);
-    ram_wa      : unsigned(clog2(STACK_WORDS) - 1 downto 0);
-    ram_ra      : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+    -- The data path's key selections, decoded from the above and gated by
+    -- the side that steps, so that its key operands are one LUT from
+    -- registers (apply, Keys).
+    k_base_pushed : std_logic; -- the top's class is a pushed one
+    k_merge_cur   : std_logic; -- the current class merges into it
+    k_merge_pix   : std_logic; -- the pixel starting a run merges into it
+    k_merge_top   : std_logic; -- the top's class merges into the pushed one
+    k_pix         : std_logic; -- the pixel joins it
+    k_keep_top    : std_logic; -- the top's key stays on top (a push, then a pop)
+    k_take_second : std_logic; -- the second's key comes on top (a pop)
+    k_cur_start   : std_logic; -- the current class starts at the pixel
+    k_cur_pix     : std_logic; -- the pixel joins the current class
+    k_detach      : std_logic; -- the merged class goes on as the current one
+    k_final       : std_logic; -- the merged class is finalized
+    rv            : std_logic; -- the reader stepped: its operations count
+    cv            : std_logic; -- the current row stepped: its operations count
+    bank          : std_logic; -- the current row's head table bank
+    r_col0        : std_logic; -- the reader is at its row's column 0
+    ahead_slot    : slot_t;    -- the slot the reader reads ahead (the data table's read)
+    flush_ends    : std_logic; -- a flush's last column: the end-of-frame beat is due
+    score         : unsigned(SCORE_BITS - 1 downto 0);
+    cx            : unsigned(XB - 1 downto 0);
+    cy            : unsigned(YB - 1 downto 0);
+    ram_wa        : unsigned(clog2(STACK_WORDS) - 1 downto 0);
+    ram_ra        : unsigned(clog2(STACK_WORDS) - 1 downto 0);
   end record op_t;
 
   function score_of (k : key_t) return unsigned is
@@ -176,43 +190,47 @@ architecture rtl of fastnms_nms_region is
 
   end function score_of;
 
-  -- The best of a and, when used, b and c, from their comparisons ab
-  -- (a >= b), ac and bc, which the caller makes on registers, every
-  -- candidate pair side by side, so that the step's control only selects.
-  function best3 (
-    a     : key_t;
-    use_b : boolean;
-    b     : key_t;
-    use_c : boolean;
-    c     : key_t;
-    ab    : boolean;
-    ac    : boolean;
-    bc    : boolean
-  ) return key_t is
+  -- The slots a column's table writes are at: the top's head and tail, the
+  -- current class's, the pixel's, zero; chosen by a one-hot selection
+  -- (pick: a flat AND-OR, not a chain of choices).
+  constant S_TOP_HEAD : natural := 0;
+  constant S_TOP_TAIL : natural := 1;
+  constant S_CUR_HEAD : natural := 2;
+  constant S_CUR_TAIL : natural := 3;
+  constant S_PIX      : natural := 4;
+  constant S_ZERO     : natural := 5;
+
+  subtype slot_sel_t is std_logic_vector(0 to 5);
+
+  type slot_array is array (slot_sel_t'range) of slot_t;
+
+  function one_hot (i : natural) return slot_sel_t is
+    variable s : slot_sel_t := (others => '0');
   begin
 
-    if use_b and use_c then
-      if ab and ac then
-        return a;
-      elsif bc then
-        return b;
-      end if;
-      return c;
-    elsif use_b then
-      if ab then
-        return a;
-      end if;
-      return b;
-    elsif use_c then
-      if ac then
-        return a;
-      end if;
-      return c;
-    end if;
+    s(i) := '1';
+    return s;
 
-    return a;
+  end function one_hot;
 
-  end function best3;
+  function pick (sel : slot_sel_t; cands : slot_array) return slot_t is
+    variable r : slot_t := (others => '0');
+  begin
+
+    for i in sel'range loop
+      r := r or (cands(i) and (slot_t'range => sel(i)));
+    end loop;
+
+    return r;
+
+  end function pick;
+
+  function pick (sel : slot_sel_t; flags : slot_sel_t) return std_logic is
+  begin
+
+    return or (sel and flags);
+
+  end function pick;
 
   function slot_of (x : unsigned) return slot_t is
   begin
@@ -408,8 +426,11 @@ architecture rtl of fastnms_nms_region is
   signal last_ahead : ahead_t;
   -- data_w writes slot 0 (the previous row's last column's write, which the
   -- next row's column 0 takes as it lands).
-  signal data_w0  : std_logic;
-  signal spare_w0 : std_logic;
+  signal data_w0 : std_logic;
+  -- The write landing now is the key of a push at column 0 (data_w0 and
+  -- the reader at column 0), a register.
+  signal data_landing : std_logic;
+  signal spare_w0     : std_logic;
   -- The bit writes' slots, 0 or 1, flagged with them: the previous row's
   -- last writes land as the next row's first columns take those words
   -- (column 0 and 1: slot 0, last bit; column 2: slot 1, the spare).
@@ -843,6 +864,18 @@ begin
         v_att := '0';
       end if;
 
+      o.k_base_pushed := o.push and rstep;
+      o.k_merge_cur   := o.attach and not o.start and rstep;
+      o.k_merge_pix   := o.attach and o.start and rstep;
+      o.k_merge_top   := o.takeover and rstep;
+      o.k_pix         := o.pix_top and cstep;
+      o.k_keep_top    := o.pop and not o.pop_merged and o.push and rstep;
+      o.k_take_second := o.pop and not o.pop_merged and not o.push and rstep;
+      o.k_cur_start   := o.start and cstep;
+      o.k_cur_pix     := o.pix_cur and cstep;
+      o.k_detach      := o.pop_detach and rstep;
+      o.k_final       := o.pop_final and rstep;
+
       -- The reader's side.
       flags_we  <= rstep and o.push_ram;
       flags_wa  <= o.ram_wa;
@@ -1030,54 +1063,65 @@ begin
       op <= o;
 
       if rst = '1' then
-        depth         <= (others => '0');
-        below2        <= to_signed(-2, DB + 1);
-        below3        <= to_signed(-3, DB + 1);
-        below4        <= to_signed(-4, DB + 1);
-        attached      <= '0';
-        active        <= '0';
-        cm            <= '0';
-        cx            <= (others => '0');
-        cy            <= (others => '0');
-        first_row     <= '1';
-        frame_start   <= '1';
-        rcol          <= (others => '0');
-        r_ahead       <= to_unsigned(2, XB);
-        r_last        <= '0';
-        r_lastcol     <= (others => '0');
-        p0            <= '0';
-        pm            <= '0';
-        flushing      <= '0';
-        flush_pending <= '0';
-        primed        <= '0';
-        holds0        <= '0';
-        prime_st      <= (others => '0');
-        flags_we      <= '0';
-        flags_re      <= '0';
-        third_rd1     <= '0';
-        third_rd2     <= '0';
-        fix_last      <= '0';
-        head_ahead    <= AHEAD_RESET;
-        last_ahead    <= AHEAD_RESET;
-        r_slot0       <= '1';
-        r_col0        <= '1';
-        r_col1        <= '0';
-        r_col2        <= '0';
-        cur_bank      <= '0';
-        r_bank        <= '0';
-        op.push       <= '0';
-        op.push_ram   <= '0';
-        op.start      <= '0';
-        op.attach     <= '0';
-        op.takeover   <= '0';
-        op.pix_top    <= '0';
-        op.pix_cur    <= '0';
-        op.cur_final  <= '0';
-        op.pop        <= '0';
-        op.pop_ram    <= '0';
-        op.rv         <= '0';
-        op.cv         <= '0';
-        op.flush_ends <= '0';
+        depth            <= (others => '0');
+        below2           <= to_signed(-2, DB + 1);
+        below3           <= to_signed(-3, DB + 1);
+        below4           <= to_signed(-4, DB + 1);
+        attached         <= '0';
+        active           <= '0';
+        cm               <= '0';
+        cx               <= (others => '0');
+        cy               <= (others => '0');
+        first_row        <= '1';
+        frame_start      <= '1';
+        rcol             <= (others => '0');
+        r_ahead          <= to_unsigned(2, XB);
+        r_last           <= '0';
+        r_lastcol        <= (others => '0');
+        p0               <= '0';
+        pm               <= '0';
+        flushing         <= '0';
+        flush_pending    <= '0';
+        primed           <= '0';
+        holds0           <= '0';
+        prime_st         <= (others => '0');
+        flags_we         <= '0';
+        flags_re         <= '0';
+        third_rd1        <= '0';
+        third_rd2        <= '0';
+        fix_last         <= '0';
+        head_ahead       <= AHEAD_RESET;
+        last_ahead       <= AHEAD_RESET;
+        r_slot0          <= '1';
+        r_col0           <= '1';
+        r_col1           <= '0';
+        r_col2           <= '0';
+        cur_bank         <= '0';
+        r_bank           <= '0';
+        op.push          <= '0';
+        op.push_ram      <= '0';
+        op.start         <= '0';
+        op.attach        <= '0';
+        op.takeover      <= '0';
+        op.pix_top       <= '0';
+        op.pix_cur       <= '0';
+        op.cur_final     <= '0';
+        op.pop           <= '0';
+        op.pop_ram       <= '0';
+        op.rv            <= '0';
+        op.cv            <= '0';
+        op.flush_ends    <= '0';
+        op.k_base_pushed <= '0';
+        op.k_merge_cur   <= '0';
+        op.k_merge_pix   <= '0';
+        op.k_merge_top   <= '0';
+        op.k_pix         <= '0';
+        op.k_keep_top    <= '0';
+        op.k_take_second <= '0';
+        op.k_cur_start   <= '0';
+        op.k_cur_pix     <= '0';
+        op.k_detach      <= '0';
+        op.k_final       <= '0';
       end if;
     end if;
 
@@ -1085,129 +1129,88 @@ begin
 
   -- The data path: the slots and keys of the column the control stepped on
   -- the clock before (op), with the same operations in the same order; the
-  -- table writes, the stack's slots and keys, the records.
+  -- table writes, the stack's slots and keys, the records. Slots move by the
+  -- operation's bits alone. Every key register takes one of the column's
+  -- candidate keys (the top's, the second's, the pushed class's, the
+  -- current class's, the pixel's), chosen at once by a one-hot selection of
+  -- the operation's bits and the comparisons, not through the step's
+  -- sequence of operations.
   apply : process (clk) is
 
-    variable v_top     : entry_t;
-    variable v_second  : entry_t;
-    variable v_third   : entry_t;
-    variable v_key     : key_t;
-    variable v_head    : slot_t;
-    variable v_tail    : slot_t;
-    variable popped    : entry_t;
-    variable ended     : entry_t; -- the current run's class, when it ends alone
-    variable pix       : key_t;
-    variable dw1       : data_write_t;
-    variable dw2       : data_write_t;
-    variable hw1       : bit_write_t;
-    variable hw2       : bit_write_t;
-    variable lw1       : bit_write_t;
-    variable lw2       : bit_write_t;
-    variable emit      : boolean;
-    variable emit_key  : key_t;
-    variable merge_en  : boolean; -- the top's class takes merge_key ...
-    variable merge_key : key_t;
-    variable merge_ge  : boolean; -- its key >= merge_key
-    variable merge_pix : boolean; -- merge_key >= the pixel
+    variable v_top    : entry_t;
+    variable v_second : entry_t;
+    variable v_third  : entry_t;
+    variable v_head   : slot_t;
+    variable v_tail   : slot_t;
+    variable popped   : entry_t; -- its key is best
+    variable dw1      : data_write_t;
+    variable dw2      : data_write_t;
+    variable hw1      : bit_write_t;
+    variable hw2      : bit_write_t;
+    variable lw1      : bit_write_t;
+    variable lw2      : bit_write_t;
+    variable pix      : key_t;
+    -- The operations that count (the side that makes them stepped).
     variable pushed    : boolean;
-    variable data_now  : key_t;
-    variable landing   : boolean; -- data_now is the write landing now
-    -- Key comparisons on registers: the top's key (top), the key of a pushed
-    -- class (push), the current class's (cur), the pixel's score (pix).
-    variable top_ge_cur  : boolean;
-    variable push_ge_cur : boolean;
-    variable push_ge_top : boolean;
-    variable top_ge_pix  : boolean;
-    variable push_ge_pix : boolean;
-    variable cur_ge_pix  : boolean;
-
-    procedure add_data_write (
-      addr : slot_t;
-      data : key_t
-    ) is
-    begin
-
-      if dw1.en = '0' then
-        dw1 := (en => '1', addr => addr, data => data);
-      else
-        dw2 := (en => '1', addr => addr, data => data);
-      end if;
-
-    end procedure add_data_write;
-
-    procedure add_head_write (
-      slot : slot_t;
-      data : std_logic
-    ) is
-    begin
-
-      -- In the current row's bank.
-      if hw1.en = '0' then
-        hw1 := (en => '1', addr => slot & op.bank, data => data);
-      else
-        hw2 := (en => '1', addr => slot & op.bank, data => data);
-      end if;
-
-    end procedure add_head_write;
-
-    procedure add_last_write (
-      slot : slot_t;
-      data : std_logic
-    ) is
-    begin
-
-      if lw1.en = '0' then
-        lw1 := (en => '1', addr => slot & '0', data => data);
-      else
-        lw2 := (en => '1', addr => slot & '0', data => data);
-      end if;
-
-    end procedure add_last_write;
-
-    procedure finalize (
-      head : slot_t;
-      tail : slot_t;
-      key  : key_t
-    ) is
-    begin
-
-      -- The class has all its current-row runs: its key waits at its first
-      -- run's slot, which is marked first, and its latest run is marked last.
-      add_data_write(head, key);
-      add_head_write(head, '1');
-      add_last_write(tail, '1');
-
-    end procedure finalize;
-
-    function slot_is (a : bit_addr_t; n : natural) return std_logic is
-    begin
-
-      return to_sl(a(SB downto 1) = n);
-
-    end function slot_is;
+    variable attach    : boolean;
+    variable takeover  : boolean;
+    variable start     : boolean;
+    variable popping   : boolean;
+    variable detach    : boolean;
+    variable final     : boolean;
+    variable cur_final : boolean;
+    -- The merge into the top's class (Keys, below): its operands, their
+    -- comparisons, the merged key; the current class's key.
+    variable base          : key_t;
+    variable merge         : key_t;
+    variable pix_in        : key_t;
+    variable base_ge_merge : boolean;
+    variable base_ge_pix   : boolean;
+    variable merge_ge_pix  : boolean;
+    variable best          : key_t;
+    variable cur_ge_pix    : boolean;
+    variable cur           : key_t;
+    -- The table writes' candidate slots and their flags (Table writes, below).
+    variable cands      : slot_array;
+    variable slot0      : slot_sel_t;
+    variable slot1      : slot_sel_t;
+    variable v_head_sel : slot_sel_t;
+    variable v_tail_sel : slot_sel_t;
+    variable p_head_sel : slot_sel_t;
+    variable p_tail_sel : slot_sel_t;
+    variable lw1_sel    : slot_sel_t;
+    variable lw2_sel    : slot_sel_t;
+    variable hw1_sel    : slot_sel_t;
+    variable hw2_sel    : slot_sel_t;
+    variable dw1_sel    : slot_sel_t;
+    variable contact_w  : boolean;
+    variable w1_en      : boolean;
+    variable w2_en      : boolean;
 
   begin
 
     if rising_edge(clk) then
-      v_top     := d_top;
-      v_second  := d_second;
-      v_third   := d_third;
-      v_key     := c_key;
-      v_head    := c_head;
-      v_tail    := c_tail;
-      dw1       := (en => '0', addr => c_head, data => c_key);
-      dw2       := dw1;
-      hw1       := NO_BIT_WRITE;
-      hw2       := NO_BIT_WRITE;
-      lw1       := NO_BIT_WRITE;
-      lw2       := NO_BIT_WRITE;
-      emit      := false;
-      emit_key  := d_top.key;
+      v_top    := d_top;
+      v_second := d_second;
+      v_third  := d_third;
+      v_head   := c_head;
+      v_tail   := c_tail;
+      dw1      := (en => '0', addr => c_head, data => c_key);
+      dw2      := dw1;
+      hw1      := NO_BIT_WRITE;
+      hw2      := NO_BIT_WRITE;
+      lw1      := NO_BIT_WRITE;
+      lw2      := NO_BIT_WRITE;
+
       pushed    := op.push = '1' and op.rv = '1';
-      merge_en  := false;
-      merge_key := c_key;
-      merge_ge  := false;
-      merge_pix := false;
+      attach    := op.attach = '1' and op.rv = '1';
+      takeover  := op.takeover = '1' and op.rv = '1' and not attach;
+      start     := op.start = '1' and op.cv = '1';
+      popping   := op.pop = '1' and op.rv = '1';
+      detach    := popping and op.pop_detach = '1';
+      final     := popping and op.pop_final = '1';
+      cur_final := op.cur_final = '1' and op.cv = '1';
+      pix       := op.score & not op.cy & not op.cx;
 
       -- The stack RAM's word below the second entry, two clocks after a pop.
       if d_third_rd2 = '1' then
@@ -1218,39 +1221,68 @@ begin
       stack_we    <= '0';
       stack_re    <= '0';
 
-      pix := op.score & not op.cy & not op.cx;
-
-      -- A key landing now is the previous row's last (slot 0, for column 0):
-      -- flagged a clock ahead (data_w0) to keep the compare off the key path.
-      -- Both candidates are compared, and the flag picks a result: the
-      -- selection stays off the compares' inputs.
-      data_now := unsigned(data_ahead.word2);
-      landing  := data_w.en = '1' and data_w0 = '1' and op.r_col0 = '1';
-      if landing then
-        data_now := data_w.data;
-      end if;
-      top_ge_cur := d_top.key >= c_key;
-      -- The pixel comes after every pixel of a class in raster order, so it
-      -- wins only with a higher score.
-      top_ge_pix := score_of(d_top.key) >= op.score;
-      cur_ge_pix := score_of(c_key) >= op.score;
-      if landing then
-        push_ge_cur := data_w.data >= c_key;
-        push_ge_top := data_w.data >= d_top.key;
-        push_ge_pix := score_of(data_w.data) >= op.score;
+      -- Keys. The merge into the top's class (steps 1, 3 and 4 below) has
+      -- three operands, each one LUT from registers: its base (the top's
+      -- key, or a pushed class's from the data table, or the write landing
+      -- there now: the previous row's last, to slot 0, for column 0), the
+      -- class merging in (the current class, the pixel starting a run, or
+      -- the top taken over; else zero, which no key is: a key's inverted
+      -- row is never zero) and the pixel joining it. The pixel comes after
+      -- every pixel of a class in raster order, so it wins only with a
+      -- higher score: its comparisons are on scores.
+      if op.k_base_pushed = '0' then
+        base := d_top.key;
+      elsif data_landing = '1' then
+        base := data_w.data;
       else
-        push_ge_cur := unsigned(data_ahead.word2) >= c_key;
-        push_ge_top := unsigned(data_ahead.word2) >= d_top.key;
-        push_ge_pix := score_of(unsigned(data_ahead.word2)) >= op.score;
+        base := unsigned(data_ahead.word2);
+      end if;
+      merge := (others => '0');
+      if op.k_merge_cur = '1' then
+        merge := c_key;
+      elsif op.k_merge_pix = '1' then
+        merge := pix;
+      elsif op.k_merge_top = '1' then
+        merge := d_top.key;
+      end if;
+      pix_in := (others => '0');
+      if op.k_pix = '1' then
+        pix_in := pix;
+      end if;
+      -- A tie goes to the first operand: the base, the class merging in,
+      -- the pixel. An operand out of play is zero, so it loses; the base
+      -- is compared with the pixel on scores, the class merging in on
+      -- keys (it may be out of play, and a score can be zero).
+      base_ge_merge := base >= merge;
+      base_ge_pix   := score_of(base) >= score_of(pix_in);
+      merge_ge_pix  := merge >= pix_in;
+      if base_ge_merge and base_ge_pix then
+        best := base;
+      elsif merge_ge_pix then
+        best := merge;
+      else
+        best := pix;
+      end if;
+      -- The current class's key after steps 2 and 4: the pixel starting it,
+      -- or a pixel with a higher score.
+      cur_ge_pix := score_of(c_key) >= op.score;
+      if op.k_cur_start = '1' or (op.k_cur_pix = '1' and not cur_ge_pix) then
+        cur := pix;
+      else
+        cur := c_key;
       end if;
 
       -- synthesis translate_off
-      assert not (pushed and data_w.en = '1' and (data_w.addr & '0') = data_ahead.addr2 and
-                  (op.r_col0 = '0' or data_w0 = '0'))
+      assert data_landing = (data_w0 and op.r_col0)
+        report "fastnms_nms_region: data_landing out of step"
+        severity failure;
+      assert not (op.push = '1' and op.rv = '1' and data_w.en = '1' and
+                  (data_w.addr & '0') = data_ahead.addr2 and (op.r_col0 = '0' or data_w0 = '0'))
         report "fastnms_nms_region: a key written as the reader takes it"
         severity failure;
       -- synthesis translate_on
 
+      -- Slots and stack moves, step by step.
       -- 1. A pushed class: its key from the data table.
       if pushed then
         if op.push_ram = '1' then
@@ -1262,60 +1294,29 @@ begin
           d_third_rd2 <= '0';
         end if;
         v_second := v_top;
-        v_top    := (head => (others => '0'), tail => (others => '0'), key => data_now);
+        v_top    := (head => (others => '0'), tail => (others => '0'), key => base);
       end if;
 
       -- 2. A current-row run starts: a class of its own for now.
-      if op.start = '1' and op.cv = '1' then
-        v_key  := pix;
+      if start then
         v_head := slot_of(op.cx);
         v_tail := slot_of(op.cx);
       end if;
 
       -- 3. The current run's class joins the top's, or the pushed class
       -- takes over the one below.
-      if op.attach = '1' and op.rv = '1' then
+      if attach then
         if op.attach_runs = '0' then
           v_top.head := v_head;
-        else
-          -- The class's latest run is no longer its last, this run's class
-          -- no longer starts at its own first run.
-          add_last_write(v_top.tail, '0');
-          add_head_write(v_head, '0');
         end if;
         v_top.tail := v_tail;
-        merge_en   := true;
-        merge_key  := v_key;
-        if op.start = '1' then -- the class is the pixel (rows >= 1 step both sides)
-          merge_ge := (pushed and push_ge_pix) or (not pushed and top_ge_pix);
-        else
-          merge_ge  := (pushed and push_ge_cur) or (not pushed and top_ge_cur);
-          merge_pix := cur_ge_pix;
-        end if;
-      elsif op.takeover = '1' and op.rv = '1' then
-        merge_en   := true;
-        merge_key  := v_second.key;
-        merge_ge   := push_ge_top;
-        merge_pix  := top_ge_pix;
+      elsif takeover then
         v_top.head := v_second.head;
         v_top.tail := v_second.tail;
       end if;
 
-      -- 4. The pixel joins its run's class.
-      if op.pix_cur = '1' and op.cv = '1' and not cur_ge_pix then
-        v_key := pix;
-      end if;
-      v_top.key := best3(v_top.key, merge_en, merge_key, op.pix_top = '1' and op.cv = '1', pix, merge_ge,
-                         (pushed and push_ge_pix) or (not pushed and top_ge_pix), merge_pix);
-
-      -- 5. The current run's class, if it ends alone: finalized after a
-      -- pop's (below): at a row's last column the second write waits a
-      -- clock in the spare register, and the pop's can be to slot 0, which
-      -- the next row's column 1 reads then.
-      ended := (head => v_head, tail => v_tail, key => v_key);
-
       -- 6. The top pops.
-      if op.pop = '1' and op.rv = '1' then
+      if popping then
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
@@ -1326,27 +1327,116 @@ begin
         end if;
         if op.pop_merged = '1' then
           v_top := popped;
-        elsif op.pop_detach = '1' then
-          v_key  := popped.key;
+        elsif detach then
           v_head := popped.head;
           v_tail := popped.tail;
-        elsif op.pop_final = '1' then
-          finalize(popped.head, popped.tail, popped.key);
-        else
-          emit     := true;
-          emit_key := popped.key;
         end if;
       end if;
-      if op.cur_final = '1' and op.cv = '1' then
-        finalize(ended.head, ended.tail, ended.key);
+
+      -- Table writes (steps 3, 5 and 6), in this order: a contact with a
+      -- class that already has current-row runs (its latest run is no
+      -- longer its last, this run's class no longer starts at its own first
+      -- run); the popped class finalized; the current run's class, if it
+      -- ends alone, finalized. A finalized class's key waits at its first
+      -- run's slot, which is marked first, and its latest run is marked
+      -- last. A port's first write goes out now, its second (only at a
+      -- row's last column) from the spare register on the next clock; the
+      -- pop's finalize comes first because it can be to slot 0, which the
+      -- next row's column 1 reads then. Each write's slot is one of the
+      -- column's slot candidates, chosen at once by a one-hot selection;
+      -- its slot-0 and slot-1 flags are the candidate's, compared on
+      -- registers.
+      cands             := (others => (others => '0'));
+      cands(S_TOP_HEAD) := d_top.head;
+      cands(S_TOP_TAIL) := d_top.tail;
+      cands(S_CUR_HEAD) := c_head;
+      cands(S_CUR_TAIL) := c_tail;
+      cands(S_PIX)      := slot_of(op.cx);
+      for i in cands'range loop
+        slot0(i) := to_sl(cands(i) = 0);
+        slot1(i) := to_sl(cands(i) = 1);
+      end loop;
+      -- The current class's cands after step 2, and the popped class's
+      -- after step 3.
+      v_head_sel := one_hot(S_CUR_HEAD);
+      v_tail_sel := one_hot(S_CUR_TAIL);
+      if start then
+        v_head_sel := one_hot(S_PIX);
+        v_tail_sel := one_hot(S_PIX);
       end if;
+      p_head_sel := one_hot(S_TOP_HEAD);
+      p_tail_sel := one_hot(S_TOP_TAIL);
+      if pushed and not takeover then
+        p_head_sel := one_hot(S_ZERO);
+        p_tail_sel := one_hot(S_ZERO);
+      end if;
+      if attach then
+        p_tail_sel := v_tail_sel;
+        if op.attach_runs = '0' then
+          p_head_sel := v_head_sel;
+        end if;
+      end if;
+      contact_w := attach and op.attach_runs = '1';
+      -- First writes.
+      w1_en := contact_w or final or cur_final;
+      if contact_w then
+        lw1_sel := one_hot(S_TOP_TAIL);
+        hw1_sel := v_head_sel;
+      elsif final then
+        lw1_sel := p_tail_sel;
+        hw1_sel := p_head_sel;
+      else
+        lw1_sel := v_tail_sel;
+        hw1_sel := v_head_sel;
+      end if;
+      -- Second writes.
+      w2_en := (contact_w and (final or cur_final)) or (final and cur_final);
+      if contact_w and final then
+        lw2_sel := p_tail_sel;
+        hw2_sel := p_head_sel;
+      else
+        lw2_sel := v_tail_sel;
+        hw2_sel := v_head_sel;
+      end if;
+      if final then
+        dw1_sel := p_head_sel;
+      else
+        dw1_sel := v_head_sel;
+      end if;
+      dw1 := (en => to_sl(final or cur_final), addr => pick(dw1_sel, cands), data => c_key);
+      dw2 := (en => to_sl(final and cur_final), addr => pick(v_head_sel, cands), data => c_key);
+      hw1 := (en => to_sl(w1_en), addr => pick(hw1_sel, cands) & op.bank, data => to_sl(not contact_w));
+      hw2 := (en => to_sl(w2_en), addr => pick(hw2_sel, cands) & op.bank, data => '1');
+      lw1 := (en => to_sl(w1_en), addr => pick(lw1_sel, cands) & '0', data => to_sl(not contact_w));
+      lw2 := (en => to_sl(w2_en), addr => pick(lw2_sel, cands) & '0', data => '1');
+      -- The keys after step 6: the pop uncovers the entry below (the
+      -- second, or the top itself after a push), or leaves the merged
+      -- class on top; the popped class (the merged one) goes on as the
+      -- current class, is finalized or closes.
+      if op.k_keep_top = '1' then
+        v_top.key := d_top.key;
+      elsif op.k_take_second = '1' then
+        v_top.key := d_second.key;
+      else
+        v_top.key := best;
+      end if;
+      if op.k_final = '1' then
+        dw1.data := best;
+      else
+        dw1.data := cur;
+      end if;
+      dw2.data := cur;
 
       d_top    <= v_top;
       d_second <= v_second;
       d_third  <= v_third;
-      c_key    <= v_key;
-      c_head   <= v_head;
-      c_tail   <= v_tail;
+      if op.k_detach = '1' then
+        c_key <= best;
+      else
+        c_key <= cur;
+      end if;
+      c_head <= v_head;
+      c_tail <= v_tail;
 
       data_ahead <= ahead_next(data_ahead, data_w.en, data_w.addr & '0', word_t(data_w.data),
                                op.rv, op.ahead_slot & '0', data_rd);
@@ -1357,12 +1447,14 @@ begin
       if data_spare.en = '1' then
         data_w        <= data_spare;
         data_w0       <= spare_w0;
+        data_landing  <= spare_w0 and r_col0;
         data_spare.en <= '0';
       else
-        data_w     <= dw1;
-        data_w0    <= to_sl(dw1.addr = 0);
-        data_spare <= dw2;
-        spare_w0   <= to_sl(dw2.addr = 0);
+        data_w       <= dw1;
+        data_w0      <= dw1.en and pick(dw1_sel, slot0);
+        data_landing <= dw1.en and pick(dw1_sel, slot0) and r_col0;
+        data_spare   <= dw2;
+        spare_w0     <= dw2.en and pick(v_head_sel, slot0);
       end if;
       if head_spare.en = '1' then
         head_w     <= head_spare;
@@ -1370,9 +1462,9 @@ begin
         head_spare <= NO_BIT_WRITE;
       else
         head_w        <= hw1;
-        head_w_s1     <= slot_is(hw1.addr, 1);
+        head_w_s1     <= pick(hw1_sel, slot1);
         head_spare    <= hw2;
-        head_spare_s1 <= slot_is(hw2.addr, 1);
+        head_spare_s1 <= pick(hw2_sel, slot1);
       end if;
       if last_spare.en = '1' then
         last_w     <= last_spare;
@@ -1381,11 +1473,11 @@ begin
         last_spare <= NO_BIT_WRITE;
       else
         last_w        <= lw1;
-        last_w_s0     <= slot_is(lw1.addr, 0);
-        last_w_s1     <= slot_is(lw1.addr, 1);
+        last_w_s0     <= pick(lw1_sel, slot0);
+        last_w_s1     <= pick(lw1_sel, slot1);
         last_spare    <= lw2;
-        last_spare_s0 <= slot_is(lw2.addr, 0);
-        last_spare_s1 <= slot_is(lw2.addr, 1);
+        last_spare_s0 <= pick(lw2_sel, slot0);
+        last_spare_s1 <= pick(lw2_sel, slot1);
       end if;
 
       -- synthesis translate_off
@@ -1404,12 +1496,12 @@ begin
       if op.flush_ends = '1' then
         eof_pending <= '1';
       end if;
-      if emit then
+      if popping and op.pop_emit = '1' then
         rec_valid <= '1';
         rec_eof   <= '0';
-        rec_x     <= not emit_key(XB - 1 downto 0);
-        rec_y     <= not emit_key(XB + YB - 1 downto XB);
-        rec_score <= emit_key(KB - 1 downto XB + YB);
+        rec_x     <= not best(XB - 1 downto 0);
+        rec_y     <= not best(XB + YB - 1 downto XB);
+        rec_score <= best(KB - 1 downto XB + YB);
       elsif eof_pending = '1' and rec_room = '1' then
         -- Separate narrow registers: GHDL's Verilog output writes a constant
         -- vector of more than 32 bits as a string (ASCII digits).
@@ -1429,6 +1521,8 @@ begin
         d_third_rd1   <= '0';
         d_third_rd2   <= '0';
         data_w.en     <= '0';
+        data_w0       <= '0';
+        data_landing  <= '0';
         data_spare.en <= '0';
         head_w        <= NO_BIT_WRITE;
         head_spare    <= NO_BIT_WRITE;
