@@ -369,6 +369,11 @@ architecture rtl of fastnms_nms_region is
   signal primed        : std_logic;
   signal prime_st      : unsigned(1 downto 0);
   signal c_penult      : unsigned(XB - 1 downto 0);
+  -- cx = c_penult and r_ahead >= 2, as registers (the row memory's read
+  -- address is chosen on registers only); c_prepen = c_penult - 1.
+  signal c_prepen    : unsigned(XB - 1 downto 0);
+  signal c_at_penult : std_logic;
+  signal r_reads     : std_logic;
 
   -- Stack flags (the control's): top, second, and a copy of the flag RAM's
   -- word below them (refreshed two clocks after a pop: third_rd1, third_rd2).
@@ -568,7 +573,7 @@ begin
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
-  f_prime <= cstep and first_row and (to_sl(cx = c_penult) or px_eol) and not flushing;
+  f_prime <= cstep and first_row and (c_at_penult or px_eol) and not flushing;
   -- The tables are read at the row memory's column, two ahead of the reader;
   -- in its row's last two columns that is slot 0 of the next row (whose head
   -- bit is never read: r_slot0).
@@ -577,16 +582,20 @@ begin
   reads : process (all) is
   begin
 
-    row_re    <= '0';
+    -- The address is from registers only (the enable says whether a read
+    -- happens): the reader's read two columns ahead (a lock-step row, or a
+    -- flush still inside its row), or a read of the next row's column 0
+    -- (a first row's penultimate column, PRIME's first clock) or 1.
     row_next0 <= '0';
     row_ra    <= resize(r_ahead, row_ra'length);
 
-    if rstep = '1' then
-      -- A flush does not read past its row.
-      row_re <= lock or to_sl(r_ahead >= 2);
-    elsif f_prime = '1' or prime_st /= 0 then
-      row_re <= '1';
-      if (f_prime = '1' and px_eol = '0') or prime_st = 1 then
+    if prime_st = 1 then
+      row_ra    <= (others => '0');
+      row_next0 <= '1';
+    elsif prime_st = 2 then
+      row_ra <= to_unsigned(1, row_ra'length);
+    elsif first_row = '1' and (flushing = '0' or r_reads = '0') then
+      if c_at_penult = '1' then
         row_ra    <= (others => '0');
         row_next0 <= '1';
       else
@@ -594,16 +603,19 @@ begin
       end if;
     end if;
 
-    -- The same clock's first row step, when the flush's own read is over.
-    if rstep = '1' and lock = '0' and r_ahead < 2 and cstep = '1' and
-       first_row = '1' and (cx = c_penult or px_eol = '1') then
+    row_re <= '0';
+
+    if rstep = '1' then
+      -- A flush does not read past its row.
+      row_re <= lock or r_reads;
+    elsif f_prime = '1' or prime_st /= 0 then
       row_re <= '1';
-      if px_eol = '0' then
-        row_ra    <= (others => '0');
-        row_next0 <= '1';
-      else
-        row_ra <= to_unsigned(1, row_ra'length);
-      end if;
+    end if;
+
+    -- The same clock's first row step, when the flush's own read is over.
+    if rstep = '1' and lock = '0' and r_reads = '0' and cstep = '1' and
+       first_row = '1' and (c_at_penult = '1' or px_eol = '1') then
+      row_re <= '1';
     end if;
 
   end process reads;
@@ -708,6 +720,10 @@ begin
              (r_last = to_sl(r_ahead = 1) and r_col0 = to_sl(rcol = 0) and
               r_slot0 = to_sl(rcol < 2) and r_col1 = to_sl(rcol = 1) and r_col2 = to_sl(rcol = 2))
         report "fastnms_nms_region: r_last, r_col0, r_col1, r_col2 or r_slot0 out of step"
+        severity failure;
+      assert not checks_on or rst = '1' or
+             (r_reads = to_sl(r_ahead >= 2) and c_at_penult = to_sl(cx = c_penult))
+        report "fastnms_nms_region: r_reads or c_at_penult out of step"
         severity failure;
       assert not (cstep = '1' and first_row = '1' and flushing = '1' and cx > rcol)
         report "fastnms_nms_region: a first row overtaking the flush"
@@ -929,6 +945,15 @@ begin
         if frame_start = '1' then
           cw       <= px_width;
           c_penult <= resize(px_width - 2, XB);
+          c_prepen <= resize(px_width - 3, XB);
+        end if;
+        -- Widths are at least 3: column 0 is never the penultimate.
+        if c_eol then
+          c_at_penult <= '0';
+        elsif frame_start = '1' then
+          c_at_penult <= to_sl(px_width = 3);
+        else
+          c_at_penult <= to_sl(cx = c_prepen);
         end if;
         frame_start <= px_eof;
         if c_eol then
@@ -970,6 +995,7 @@ begin
         else
           r_ahead <= r_ahead + 1;
         end if;
+        r_reads <= to_sl(r_ahead /= r_lastcol and r_ahead /= 0);
         -- Rows are at least 3 wide: after r_ahead = 0 comes 1.
         r_last <= to_sl(r_ahead = 0);
         p0     <= row_rd(0);
@@ -979,18 +1005,25 @@ begin
           pm <= p0;
         end if;
       elsif (f_prime = '1' and px_eol = '1') or prime_st = 2 then
-        -- The next reader row (lock-step or flush) starts at column 0.
+        -- The next reader row (lock-step or flush) starts at column 0,
+        -- where the reader already is (asserted below): a reader row ends
+        -- at its last column, and its step there moves it to column 0 two
+        -- ahead; only the bits are loaded.
         p0        <= row_rd(0);
         pm        <= '0';
-        rcol      <= (others => '0');
-        r_slot0   <= '1';
-        r_col0    <= '1';
-        r_col1    <= '0';
-        r_col2    <= '0';
-        r_ahead   <= to_unsigned(2, XB);
-        r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
       end if;
+
+      -- synthesis translate_off
+      assert not (rstep = '0' and ((f_prime = '1' and px_eol = '1') or prime_st = 2) and
+                  (rcol /= 0 or r_ahead /= 2))
+        report "fastnms_nms_region: the reader primed away from column 0"
+        severity failure;
+      assert not (checks_on and rst = '0' and flushing = '0' and first_row = '1' and
+                  (rcol /= 0 or r_ahead /= 2))
+        report "fastnms_nms_region: the reader idle away from column 0"
+        severity failure;
+      -- synthesis translate_on
 
       -- Primed: the reader's prefetch is valid for its next row (lock-step
       -- rows keep it so). A flush spends it; a first row's last column sets it
@@ -1013,8 +1046,6 @@ begin
       primed <= v_primed;
       if flush_ends then
         -- The next reader row is a lock-step row of the current frame.
-        r_ahead   <= to_unsigned(2, XB);
-        r_last    <= '0';
         r_lastcol <= resize(cw - 1, XB);
       end if;
       if lock = '1' and c_eol then
@@ -1035,8 +1066,6 @@ begin
       if eof_step then
         if (flushing = '0' or flush_ends) and v_primed = '1' then
           flushing  <= '1';
-          r_ahead   <= to_unsigned(2, XB);
-          r_last    <= '0';
           r_lastcol <= resize(cw - 1, XB);
         else
           flush_pending <= '1';
@@ -1045,8 +1074,6 @@ begin
       elsif flush_pending = '1' and (flushing = '0' or flush_ends) and primed = '1' then
         flushing      <= '1';
         flush_pending <= '0';
-        r_ahead       <= to_unsigned(2, XB);
-        r_last        <= '0';
         r_lastcol     <= resize(flush_w - 1, XB);
       end if;
       if flushing = '0' and primed = '0' and prime_st = 0 and cstep = '0' and
@@ -1076,6 +1103,8 @@ begin
         frame_start      <= '1';
         rcol             <= (others => '0');
         r_ahead          <= to_unsigned(2, XB);
+        r_reads          <= '1';
+        c_at_penult      <= '0';
         r_last           <= '0';
         r_lastcol        <= (others => '0');
         p0               <= '0';
