@@ -448,9 +448,11 @@ architecture rtl of fastnms_nms_region is
   -- The reader's column is in slot 0: its run is the first of the row, so
   -- the first of its class.
   signal r_slot0 : std_logic;
-  signal r_col0  : std_logic; -- rcol = 0
-  signal r_col1  : std_logic; -- rcol = 1
-  signal r_col2  : std_logic; -- rcol = 2
+  -- The head bit of the previous-row run at rcol (the first of its class).
+  signal run_head_r : std_logic;
+  signal r_col0     : std_logic; -- rcol = 0
+  signal r_col1     : std_logic; -- rcol = 1
+  signal r_col2     : std_logic; -- rcol = 2
 
   -- Row parity of the current row and of the reader's row (a bank of the
   -- head table each): counted over all rows of all frames, so the row being
@@ -566,10 +568,15 @@ begin
   row_wa    <= cx;
   row_wd(0) <= px_corner;
   cstep     <= cur_go and px_valid;
-  lock      <= cstep and not first_row;
-  rstep     <= lock or flush_go;
-  r_next    <= (others => '0') when r_last = '1' else
-               rcol + 1;
+  -- Written out from registers (the same as cstep and not first_row, and
+  -- lock or flush_go), one LUT each: every reader register and operation
+  -- bit depends on them.
+  lock   <= rec_room and px_valid and primed and not flushing and not flush_pending and
+            not first_row;
+  rstep  <= rec_room and (flushing or
+                          (px_valid and primed and not flush_pending and not first_row));
+  r_next <= (others => '0') when r_last = '1' else
+            rcol + 1;
   -- A first row reads the next row's first two columns in its last two (the
   -- row memory then holds them); PRIME does the same when a flush held the
   -- port then.
@@ -653,8 +660,10 @@ begin
     variable run_last   : std_logic;
     variable last_now   : std_logic;
     variable fwd_last0  : boolean;
-    variable fwd_last1  : boolean;
-    variable fwd_head1  : boolean;
+    variable fwd_last1  : boolean;    variable fwd_head1  : boolean;
+    variable next_head  : ahead_t;
+    variable next_slot0 : std_logic;
+    variable next_col2  : std_logic;
 
   begin
 
@@ -734,6 +743,9 @@ begin
       assert not (lock = '1' and rstep /= cstep)
         report "fastnms_nms_region: a lock-step row with one side stepping"
         severity failure;
+      assert lock = (cstep and not first_row) and rstep = (lock or flush_go)
+        report "fastnms_nms_region: lock or rstep out of step"
+        severity failure;
       -- synthesis translate_on
 
       -- The step's decisions are made as if both sides stepped, from
@@ -754,14 +766,10 @@ begin
       p_start   := p0 = '1' and pm = '0';
       p_end     := (pm = '1' and p0 = '0') or (p0 = '1' and r_eol);
       fwd_last0 := last_w.en = '1' and last_w_s0 = '1' and r_slot0 = '1';
-      fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';
-      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
-                   head_w.addr(0) = r_bank;
-      run_head  := head_ahead.word2(0) or r_slot0;
-      if fwd_head1 then
-        run_head := head_w.data;
-      end if;
-      last_now := last_ahead.word2(0);
+      fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
+                                                                                           head_w.addr(0) = r_bank;
+      run_head  := run_head_r;
+      last_now  := last_ahead.word2(0);
       if fwd_last0 or fwd_last1 then
         last_now := last_w.data;
       end if;
@@ -777,9 +785,13 @@ begin
         severity failure;
       assert not ((fwd_last0 or fwd_last1) and last_w.addr /= last_ahead.addr2)
         report "fastnms_nms_region: last_w_s0 or last_w_s1 out of step"
-        severity failure;
-      assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
+        severity failure;      assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
         report "fastnms_nms_region: head_w_s1 out of step"
+        severity failure;
+      assert not checks_on or rst = '1' or
+             (fwd_head1 and run_head_r = head_w.data) or
+             (not fwd_head1 and run_head_r = (head_ahead.word2(0) or r_slot0))
+        report "fastnms_nms_region: run_head_r out of step"
         severity failure;
       assert not (rstep = '1' and p_start and run_head = '0' and v_depth = 0)
         report "fastnms_nms_region: a continuing run without an open class"
@@ -974,9 +986,25 @@ begin
 
       if cstep = '1' and c_eol then
         cur_bank <= not cur_bank;
+      end if;      next_head := ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
+                                           rstep, ahead_slot & r_bank, word(head_rd(0)));
+      head_ahead             <= next_head;
+      -- The head bit of the run the reader takes next, a register: the word
+      -- it reads ahead, or the row's first run, or the previous row's last
+      -- column's second write (from the spare register: slot 1, taken at
+      -- column 2) when it lands as the reader takes that word.
+      next_slot0 := r_slot0;
+      next_col2  := r_col2;
+      if rstep = '1' then
+        next_slot0 := r_last or r_col0;
+        next_col2  := r_col1;
       end if;
-      head_ahead <= ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
-                               rstep, ahead_slot & r_bank, word(head_rd(0)));
+      if head_spare.en = '1' and head_spare_s1 = '1' and next_col2 = '1' and
+         head_spare.addr(0) = (r_bank xor (rstep and r_last)) then
+        run_head_r <= head_spare.data;
+      else
+        run_head_r <= next_head.word2(0) or next_slot0;
+      end if;
       last_ahead <= ahead_next(last_ahead, last_w.en, last_w.addr, word(last_w.data),
                                rstep, ahead_slot & '0', word(last_rd(0)));
       if rstep = '1' and r_last = '1' then
@@ -1104,6 +1132,7 @@ begin
         rcol             <= (others => '0');
         r_ahead          <= to_unsigned(2, XB);
         r_reads          <= '1';
+        run_head_r       <= '1';
         c_at_penult      <= '0';
         r_last           <= '0';
         r_lastcol        <= (others => '0');
