@@ -999,11 +999,18 @@ begin
         next_slot0 := r_last or r_col0;
         next_col2  := r_col1;
       end if;
+      -- The RAM's output is the last input of the choice (one LUT after the
+      -- block RAM, whose clock-to-output is long on ECP5).
       if head_spare.en = '1' and head_spare_s1 = '1' and next_col2 = '1' and
          head_spare.addr(0) = (r_bank xor (rstep and r_last)) then
         run_head_r <= head_spare.data;
+      elsif next_slot0 = '1' then
+        run_head_r <= '1';
+      elsif rstep = '1' and not (head_w.en = '1' and head_w.addr = head_ahead.addr1) and
+            head_ahead.fwd_v = '0' then
+        run_head_r <= head_rd(0);
       else
-        run_head_r <= next_head.word2(0) or next_slot0;
+        run_head_r <= next_head.word2(0);
       end if;
       last_ahead <= ahead_next(last_ahead, last_w.en, last_w.addr, word(last_w.data),
                                rstep, ahead_slot & '0', word(last_rd(0)));
