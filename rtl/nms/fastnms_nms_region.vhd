@@ -660,7 +660,8 @@ begin
     variable run_last   : std_logic;
     variable last_now   : std_logic;
     variable fwd_last0  : boolean;
-    variable fwd_last1  : boolean;    variable fwd_head1  : boolean;
+    variable fwd_last1  : boolean;
+    variable fwd_head1  : boolean;
     variable next_head  : ahead_t;
     variable next_slot0 : std_logic;
     variable next_col2  : std_logic;
@@ -766,8 +767,9 @@ begin
       p_start   := p0 = '1' and pm = '0';
       p_end     := (pm = '1' and p0 = '0') or (p0 = '1' and r_eol);
       fwd_last0 := last_w.en = '1' and last_w_s0 = '1' and r_slot0 = '1';
-      fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
-                                                                                           head_w.addr(0) = r_bank;
+      fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';
+      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
+                   head_w.addr(0) = r_bank;
       run_head  := run_head_r;
       last_now  := last_ahead.word2(0);
       if fwd_last0 or fwd_last1 then
@@ -785,7 +787,8 @@ begin
         severity failure;
       assert not ((fwd_last0 or fwd_last1) and last_w.addr /= last_ahead.addr2)
         report "fastnms_nms_region: last_w_s0 or last_w_s1 out of step"
-        severity failure;      assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
+        severity failure;
+      assert not (fwd_head1 and head_w.addr /= head_ahead.addr2)
         report "fastnms_nms_region: head_w_s1 out of step"
         severity failure;
       assert not checks_on or rst = '1' or
@@ -986,9 +989,10 @@ begin
 
       if cstep = '1' and c_eol then
         cur_bank <= not cur_bank;
-      end if;      next_head := ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
-                                           rstep, ahead_slot & r_bank, word(head_rd(0)));
-      head_ahead             <= next_head;
+      end if;
+      next_head  := ahead_next(head_ahead, head_w.en, head_w.addr, word(head_w.data),
+                               rstep, ahead_slot & r_bank, word(head_rd(0)));
+      head_ahead <= next_head;
       -- The head bit of the run the reader takes next, a register: the word
       -- it reads ahead, or the row's first run, or the previous row's last
       -- column's second write (from the spare register: slot 1, taken at
@@ -1098,8 +1102,17 @@ begin
         flushing     <= '0';
         o.flush_ends := '1';
       end if;
+      -- synthesis translate_off
+      assert not (eof_step and (flushing = '0' or flush_ends) and
+                  v_primed /= (not first_row or holds0))
+        report "fastnms_nms_region: the flush's start out of step with primed"
+        severity failure;
+      -- synthesis translate_on
       if eof_step then
-        if (flushing = '0' or flush_ends) and v_primed = '1' then
+        -- The reader is primed after a lock-step row (it steps only
+        -- primed), and after a first row if its read of column 0 was the
+        -- last (v_primed, written out).
+        if (flushing = '0' or flush_ends) and (first_row = '0' or holds0 = '1') then
           flushing  <= '1';
           r_lastcol <= resize(cw - 1, XB);
         else
@@ -1195,11 +1208,9 @@ begin
   -- The data path: the slots and keys of the column the control stepped on
   -- the clock before (op), with the same operations in the same order; the
   -- table writes, the stack's slots and keys, the records. Slots move by the
-  -- operation's bits alone. Every key register takes one of the column's
-  -- candidate keys (the top's, the second's, the pushed class's, the
-  -- current class's, the pixel's), chosen at once by a one-hot selection of
-  -- the operation's bits and the comparisons, not through the step's
-  -- sequence of operations.
+  -- operation's bits alone. The keys (Keys, below) and the table writes'
+  -- slots (Table writes) are chosen at once, by the operation's bits and
+  -- the comparisons, not through the step's sequence of operations.
   apply : process (clk) is
 
     variable v_top    : entry_t;
