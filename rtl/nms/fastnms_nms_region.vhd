@@ -1102,12 +1102,14 @@ begin
         flushing     <= '0';
         o.flush_ends := '1';
       end if;
+
       -- synthesis translate_off
       assert not (eof_step and (flushing = '0' or flush_ends) and
                   v_primed /= (not first_row or holds0))
         report "fastnms_nms_region: the flush's start out of step with primed"
         severity failure;
       -- synthesis translate_on
+
       if eof_step then
         -- The reader is primed after a lock-step row (it steps only
         -- primed), and after a first row if its read of column 0 was the
