@@ -1307,7 +1307,7 @@ begin
       -- the top taken over; else zero, which no key is: a key's inverted
       -- row is never zero) and the pixel joining it. The pixel comes after
       -- every pixel of a class in raster order, so it wins only with a
-      -- higher score: its comparisons are on scores.
+      -- higher score.
       if op.k_base_pushed = '0' then
         base := d_top.key;
       elsif data_landing = '1' then
