@@ -368,9 +368,9 @@ architecture rtl of fastnms_nms_region is
   signal flush_w       : unsigned(WB - 1 downto 0);
   signal primed        : std_logic;
   signal prime_st      : unsigned(1 downto 0);
-  signal c_penult      : unsigned(XB - 1 downto 0);
-  -- cx = c_penult and r_ahead >= 2, as registers (the row memory's read
-  -- address is chosen on registers only); c_prepen = c_penult - 1.
+  -- cx is the row's penultimate column, and r_ahead >= 2, as registers
+  -- (the row memory's read address is chosen on registers only); c_prepen
+  -- is the column before the penultimate.
   signal c_prepen    : unsigned(XB - 1 downto 0);
   signal c_at_penult : std_logic;
   signal r_reads     : std_logic;
@@ -732,7 +732,7 @@ begin
         report "fastnms_nms_region: r_last, r_col0, r_col1, r_col2 or r_slot0 out of step"
         severity failure;
       assert not checks_on or rst = '1' or
-             (r_reads = to_sl(r_ahead >= 2) and c_at_penult = to_sl(cx = c_penult))
+             (r_reads = to_sl(r_ahead >= 2) and (frame_start = '1' or c_at_penult = to_sl(cx = c_prepen + 1)))
         report "fastnms_nms_region: r_reads or c_at_penult out of step"
         severity failure;
       assert not (cstep = '1' and first_row = '1' and flushing = '1' and cx > rcol)
@@ -768,8 +768,6 @@ begin
       p_end     := (pm = '1' and p0 = '0') or (p0 = '1' and r_eol);
       fwd_last0 := last_w.en = '1' and last_w_s0 = '1' and r_slot0 = '1';
       fwd_last1 := last_w.en = '1' and last_w_s1 = '1' and r_col2 = '1';
-      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
-                   head_w.addr(0) = r_bank;
       run_head  := run_head_r;
       last_now  := last_ahead.word2(0);
       if fwd_last0 or fwd_last1 then
@@ -777,6 +775,9 @@ begin
       end if;
 
       -- synthesis translate_off
+      -- The write a registered head bit (run_head_r) took a clock ahead.
+      fwd_head1 := head_w.en = '1' and head_w_s1 = '1' and r_col2 = '1' and
+                   head_w.addr(0) = r_bank;
       assert not (rstep = '1' and p_start and r_slot0 = '0' and head_w.en = '1' and
                   head_w.addr = head_ahead.addr2 and not fwd_head1)
         report "fastnms_nms_region: a head bit written as the reader takes it"
@@ -959,7 +960,6 @@ begin
       if cstep = '1' then
         if frame_start = '1' then
           cw       <= px_width;
-          c_penult <= resize(px_width - 2, XB);
           c_prepen <= resize(px_width - 3, XB);
         end if;
         -- Widths are at least 3: column 0 is never the penultimate.
@@ -1280,13 +1280,14 @@ begin
       lw1      := NO_BIT_WRITE;
       lw2      := NO_BIT_WRITE;
 
-      pushed    := op.push = '1' and op.rv = '1';
-      attach    := op.attach = '1' and op.rv = '1';
-      takeover  := op.takeover = '1' and op.rv = '1' and not attach;
-      start     := op.start = '1' and op.cv = '1';
+      -- (The control's k_* bits are these operations, already gated.)
+      pushed    := op.k_base_pushed = '1';
+      attach    := op.k_merge_cur = '1' or op.k_merge_pix = '1';
+      takeover  := op.k_merge_top = '1';
+      start     := op.k_cur_start = '1';
       popping   := op.pop = '1' and op.rv = '1';
-      detach    := popping and op.pop_detach = '1';
-      final     := popping and op.pop_final = '1';
+      detach    := op.k_detach = '1';
+      final     := op.k_final = '1';
       cur_final := op.cur_final = '1' and op.cv = '1';
       pix       := op.score & not op.cy & not op.cx;
 
