@@ -405,8 +405,7 @@ architecture rtl of fastnms_nms_region is
   signal d_top       : entry_t := unpack(sim_zeros(ENTRY_BITS));
   signal d_second    : entry_t := unpack(sim_zeros(ENTRY_BITS));
   signal d_third     : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal d_third_rd1 : std_logic;
-  signal d_third_rd2 : std_logic;
+  signal d_third_rd  : std_logic;
 
   -- Memories. Read enables and addresses are this clock's steps; writes are
   -- registered.
@@ -1241,7 +1240,7 @@ begin
     -- comparisons, the merged key; the current class's key.
     variable base          : key_t;
     variable merge         : key_t;
-    variable pix_in        : key_t;
+    variable pix_in        : unsigned(SCORE_BITS - 1 downto 0);
     variable base_ge_merge : boolean;
     variable base_ge_pix   : boolean;
     variable merge_ge_pix  : boolean;
@@ -1291,14 +1290,13 @@ begin
       cur_final := op.cur_final = '1' and op.cv = '1';
       pix       := op.score & not op.cy & not op.cx;
 
-      -- The stack RAM's word below the second entry, two clocks after a pop.
-      if d_third_rd2 = '1' then
+      -- The stack RAM's word below the second entry, read by the pop on
+      -- the clock before (stack_re), straight into its register.
+      if d_third_rd = '1' then
         v_third := unpack(stack_rd);
       end if;
-      d_third_rd2 <= d_third_rd1;
-      d_third_rd1 <= '0';
-      stack_we    <= '0';
-      stack_re    <= '0';
+      d_third_rd <= stack_re;
+      stack_we   <= '0';
 
       -- Keys. The merge into the top's class (steps 1, 3 and 4 below) has
       -- three operands, each one LUT from registers: its base (the top's
@@ -1326,15 +1324,17 @@ begin
       end if;
       pix_in := (others => '0');
       if op.k_pix = '1' then
-        pix_in := pix;
+        pix_in := op.score;
       end if;
       -- A tie goes to the first operand: the base, the class merging in,
-      -- the pixel. An operand out of play is zero, so it loses; the base
-      -- is compared with the pixel on scores, the class merging in on
-      -- keys (it may be out of play, and a score can be zero).
+      -- the pixel. The class merging in, when none does, is zero and
+      -- loses to the base; the pixel out of play has score zero. The
+      -- pixel is compared on scores (every class's best pixel is before
+      -- it), the base and the class merging in on keys.
       base_ge_merge := base >= merge;
-      base_ge_pix   := score_of(base) >= score_of(pix_in);
-      merge_ge_pix  := merge >= pix_in;
+      base_ge_pix   := score_of(base) >= pix_in;
+      merge_ge_pix  := (op.k_merge_cur = '1' or op.k_merge_pix = '1' or op.k_merge_top = '1') and
+                       score_of(merge) >= pix_in;
       if base_ge_merge and base_ge_pix then
         best := base;
       elsif merge_ge_pix then
@@ -1352,6 +1352,12 @@ begin
       end if;
 
       -- synthesis translate_off
+      assert not (d_third_rd = '1' and popping and not pushed)
+        report "fastnms_nms_region: a pop uncovering the stack RAM's word before it is read"
+        severity failure;
+      assert not (popping and op.pop_emit = '1' and best /= base)
+        report "fastnms_nms_region: a closing class merged in its last column"
+        severity failure;
       assert data_landing = (data_w0 and op.r_col0)
         report "fastnms_nms_region: data_landing out of step"
         severity failure;
@@ -1369,8 +1375,6 @@ begin
           stack_wa    <= op.ram_wa;
           stack_wd    <= pack(v_second);
           v_third     := v_second;
-          d_third_rd1 <= '0';
-          d_third_rd2 <= '0';
         end if;
         v_second := v_top;
         v_top    := (head => (others => '0'), tail => (others => '0'), key => base);
@@ -1399,11 +1403,6 @@ begin
         popped   := v_top;
         v_top    := v_second;
         v_second := v_third;
-        if op.pop_ram = '1' then
-          stack_re    <= '1';
-          stack_ra    <= op.ram_ra;
-          d_third_rd1 <= '1';
-        end if;
         if op.pop_merged = '1' then
           v_top := popped;
         elsif detach then
@@ -1575,12 +1574,14 @@ begin
       if op.flush_ends = '1' then
         eof_pending <= '1';
       end if;
+      -- A class that closes had no merge and no pixel in its last column
+      -- (it has no current-row runs): its key is the base (asserted).
       if popping and op.pop_emit = '1' then
         rec_valid <= '1';
         rec_eof   <= '0';
-        rec_x     <= not best(XB - 1 downto 0);
-        rec_y     <= not best(XB + YB - 1 downto XB);
-        rec_score <= best(KB - 1 downto XB + YB);
+        rec_x     <= not base(XB - 1 downto 0);
+        rec_y     <= not base(XB + YB - 1 downto XB);
+        rec_score <= base(KB - 1 downto XB + YB);
       elsif eof_pending = '1' and rec_room = '1' then
         -- Separate narrow registers: GHDL's Verilog output writes a constant
         -- vector of more than 32 bits as a string (ASCII digits).
@@ -1596,9 +1597,7 @@ begin
         eof_pending   <= '0';
         rec_valid     <= '0';
         stack_we      <= '0';
-        stack_re      <= '0';
-        d_third_rd1   <= '0';
-        d_third_rd2   <= '0';
+        d_third_rd    <= '0';
         data_w.en     <= '0';
         data_w0       <= '0';
         data_landing  <= '0';
@@ -1612,6 +1611,13 @@ begin
     end if;
 
   end process apply;
+
+  -- The stack RAM is read in the pop's own clock, from the operation's
+  -- registers: its word reaches d_third on the next clock, with at most a
+  -- choice between the RAM and the registers in front (pops without a push
+  -- between them are at least two columns apart).
+  stack_re <= op.pop and op.pop_ram and op.rv;
+  stack_ra <= op.ram_ra;
 
   row_memory : entity work.fastnms_ram_sdp
     generic map (
