@@ -22,7 +22,7 @@ MAX_LOGIC_LEVELS = 4
 # Known exceptions, recorded so that they cannot grow unnoticed: the region NMS
 # does a column of its connected-components step per clock, its decisions a
 # clock ahead of its data path, which still compares keys, selects the best
-# and routes it through a pop in one clock: yosys maps it into 8 levels,
+# and routes it through a pop in one clock: yosys maps it into 7 levels,
 # alone and inside a core; a merge of two keys in one clock alone takes 5
 # (test_one_clock_key_merge_depth, docs/fastnms_nms_region.md, *Limits*).
 DEEPER = {
@@ -35,7 +35,7 @@ DEEPER = {
     # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
     # deeper beside the output stage: abc chains the FIFO's level flags.
     "fastnms_nms_serializer": MAX_LOGIC_LEVELS + 1,
-    "fastnms_nms_region": 8,
+    "fastnms_nms_region": 7,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
