@@ -1521,9 +1521,11 @@ begin
 
       -- Table writes: the step's first now, a second one on the next clock
       -- (only the last column of a row makes two; the next clock's step
-      -- writes nothing).
+      -- writes nothing). The second data write is the current class's key,
+      -- which c_key holds on that clock (the spare register keeps only its
+      -- slot; asserted).
       if data_spare.en = '1' then
-        data_w        <= data_spare;
+        data_w        <= (en => '1', addr => data_spare.addr, data => c_key);
         data_w0       <= spare_w0;
         data_landing  <= spare_w0 and r_col0;
         data_spare.en <= '0';
@@ -1559,6 +1561,9 @@ begin
       end if;
 
       -- synthesis translate_off
+      assert not (data_spare.en = '1' and c_key /= data_spare.data)
+        report "fastnms_nms_region: the second data write's key out of step"
+        severity failure;
       assert not ((data_spare.en = '1' and dw1.en = '1') or (head_spare.en = '1' and hw1.en = '1') or
                   (last_spare.en = '1' and lw1.en = '1'))
         report "fastnms_nms_region: table writes on consecutive clocks"
