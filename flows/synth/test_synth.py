@@ -197,6 +197,27 @@ def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.parametrize(
+    ("score_bits", "compared_ahead", "levels"),
+    [(12, False, 6), (8, False, 7), (12, True, 3), (8, True, 3)],
+)
+def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
+    """The region NMS data path's key selection for one column (the merge of its base,
+    the class merging in and the pixel; the current class; the pop's choice; the table
+    write) with the tie rule as order flags (scores compared in the clock) maps into 6 or
+    7 levels, as many as the block: order flags alone do not reach 4. With every
+    comparison of the column a register, 3: a 4-level data path needs its comparisons
+    made a clock ahead. Exact, so that docs/fastnms_nms_region.md (Limits) follows the
+    tools."""
+    generics = {
+        "SCORE_BITS": score_bits,
+        "POS_BITS": 22,
+        "COMPARED_AHEAD": str(compared_ahead).lower(),
+    }
+    cells = probe_cells("key_step", generics, tmp_path)
+    assert cells["logic_levels"] == levels, cells
+
+
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_step_control_depth(connectivity, tmp_path):
     """The region NMS step's control alone (its flags and decisions, from registered

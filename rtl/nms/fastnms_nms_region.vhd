@@ -398,14 +398,14 @@ architecture rtl of fastnms_nms_region is
   -- class's slots and key, the stack's slots and keys (top, second, third).
   -- (sim_zeros: the compares made every clock read c_key, the stack and
   -- the tables before their first write.)
-  signal op          : op_t;
-  signal c_key       : key_t   := unsigned(sim_zeros(KB));
-  signal c_head      : slot_t  := unsigned(sim_zeros(SB));
-  signal c_tail      : slot_t  := unsigned(sim_zeros(SB));
-  signal d_top       : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal d_second    : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal d_third     : entry_t := unpack(sim_zeros(ENTRY_BITS));
-  signal d_third_rd  : std_logic;
+  signal op         : op_t;
+  signal c_key      : key_t   := unsigned(sim_zeros(KB));
+  signal c_head     : slot_t  := unsigned(sim_zeros(SB));
+  signal c_tail     : slot_t  := unsigned(sim_zeros(SB));
+  signal d_top      : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_second   : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_third    : entry_t := unpack(sim_zeros(ENTRY_BITS));
+  signal d_third_rd : std_logic;
 
   -- Memories. Read enables and addresses are this clock's steps; writes are
   -- registered.
@@ -1371,10 +1371,10 @@ begin
       -- 1. A pushed class: its key from the data table.
       if pushed then
         if op.push_ram = '1' then
-          stack_we    <= '1';
-          stack_wa    <= op.ram_wa;
-          stack_wd    <= pack(v_second);
-          v_third     := v_second;
+          stack_we <= '1';
+          stack_wa <= op.ram_wa;
+          stack_wd <= pack(v_second);
+          v_third  := v_second;
         end if;
         v_second := v_top;
         v_top    := (head => (others => '0'), tail => (others => '0'), key => base);
