@@ -222,7 +222,7 @@ def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
 def test_step_control_depth(connectivity, tmp_path):
     """The region NMS step's control alone (its flags and decisions, from registered
     inputs to a registered operation code, no slot, key or address) maps into 3 levels,
-    against 11 for the whole step: the depth is in routing slots and keys by decisions
+    against 7 for the whole step: the depth is in routing slots and keys by decisions
     made in the same clock, which a 4-level design must do a clock after them. Exact,
     so that docs/fastnms_nms_region.md (Limits) follows the tools."""
     cells = probe_cells("step_control", {"CONNECTIVITY": connectivity}, tmp_path)
