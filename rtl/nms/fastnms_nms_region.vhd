@@ -1618,9 +1618,8 @@ begin
   end process apply;
 
   -- The stack RAM is read in the pop's own clock, from the operation's
-  -- registers: its word reaches d_third on the next clock, with at most a
-  -- choice between the RAM and the registers in front (pops without a push
-  -- between them are at least two columns apart).
+  -- registers: its word is the third entry on the next clock (pops without
+  -- a push between them are at least two columns apart, asserted).
   stack_re <= op.pop and op.pop_ram and op.rv;
   stack_ra <= op.ram_ra;
 
