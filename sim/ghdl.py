@@ -33,12 +33,14 @@ def build_and_run(
     testcase: str | None = None,
     log_file: Path | None = None,
     always: bool = False,
+    extra_sources: tuple[Path, ...] = (),
 ) -> tuple[int, int]:
     """Build `toplevel` from rtl/ into `build_dir` and run the cocotb module `module`
     (a dotted name importable from the repository root or the installed package) on
     it with `generics`; returns (tests, failed) from its results file. `plusargs`
     are GHDL run-time options; `log_file` takes the build's and the simulator's
-    output (the console otherwise)."""
+    output (the console otherwise); `extra_sources` are compiled after rtl/ (a
+    synthesis probe, for one)."""
     from cocotb_tools.check_results import get_results
     from cocotb_tools.runner import get_runner
 
@@ -52,7 +54,7 @@ def build_and_run(
     with open(build_dir / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         runner.build(
-            sources=rtl_sources(),
+            sources=[*rtl_sources(), *extra_sources],
             hdl_toplevel=toplevel,
             build_args=["--std=08"],
             build_dir=build_dir,

@@ -43,12 +43,13 @@ def run_cocotb(
     testcase: str | None = None,
     env: dict[str, str] | None = None,
     name: str,
+    extra_sources: tuple[Path, ...] = (),
 ) -> None:
     """Build `toplevel` with `generics` and run the cocotb tests of `module`.
 
     `module` names a Python module in tb/ or one of its folders (`axi_tb`); `env` reaches the
-    testbench as environment variables. Fails unless at least one test ran and
-    none failed.
+    testbench as environment variables; `extra_sources` are compiled after rtl/ (a synthesis
+    probe, for one). Fails unless at least one test ran and none failed.
     """
     seed = test_seed(name)
     print(f"seed={seed} (set FASTNMS_SEED={seed} to repeat)")
@@ -76,6 +77,7 @@ def run_cocotb(
             seed=seed,
             testcase=testcase,
             log_file=log,
+            extra_sources=extra_sources,
         )
     finally:
         _print_tail(log)

@@ -218,6 +218,34 @@ def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.parametrize(
+    ("decided_ahead", "pixel_ahead", "levels"),
+    [
+        # The shallowest; the others take a minute or more each to map.
+        (False, True, 5),
+        pytest.param(False, False, 6, marks=pytest.mark.slow),
+        pytest.param(True, False, 8, marks=pytest.mark.slow),
+        pytest.param(True, True, 7, marks=pytest.mark.slow),
+    ],
+)
+def test_key_flags_depth(decided_ahead, pixel_ahead, levels, tmp_path):
+    """The region NMS data path's keys with every comparison kept up to date as order
+    flags (one per pair of its seven key registers, one per register against the pixel;
+    keys from memories come with their flags as inputs, so a lower bound) maps into 6
+    levels, 5 with the next pixel's comparisons made a clock ahead, 8 and 7 with the
+    column's decision itself made a clock ahead from the next flags: none of these
+    reaches 4. tb/probes/ simulates the probe against a model. Exact, so that
+    docs/fastnms_nms_region.md (Limits) follows the tools."""
+    generics = {
+        "SCORE_BITS": 12,
+        "POS_BITS": 22,
+        "DECIDED_AHEAD": str(decided_ahead).lower(),
+        "PIXEL_AHEAD": str(pixel_ahead).lower(),
+    }
+    cells = probe_cells("key_flags", generics, tmp_path)
+    assert cells["logic_levels"] == levels, cells
+
+
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_step_control_depth(connectivity, tmp_path):
     """The region NMS step's control alone (its flags and decisions, from registered
