@@ -121,7 +121,7 @@ def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
     key_bits = score_bits + x_bits + y_bits
     stack_words = max((max_width + 1) // 4 + 1 - 2, 1)
     rows = [
-        ("row memory (the previous row's corner bits)", max_width, 1),
+        ("row memory (the previous row's corner bits, two columns per word; LUT RAM)", slots, 2),
         ("head table (first run of its class?, by row parity and slot; LUT RAM)", 2 * slots, 1),
         ("last table (last run of its class?, by slot; LUT RAM)", slots, 1),
         ("data table (best key of the class, by slot; the paper's RAM score)", slots, key_bits),

@@ -122,7 +122,8 @@ def test_region_memory_breakdown():
     RTL sizes them (worked out by hand from its generics; `make bench` renders the
     table into docs/results.md)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
-    # 960 slots of 10 bits; a head bit per slot and row parity, a last bit per slot; keys
+    # 960 slots of 10 bits; the row's bits two columns per word (960 x 2); a head bit per
+    # slot and row parity, a last bit per slot; keys
     # of 12 + 11 + 11 bits; 479 stack words of 2 x 10 + 34 bits (slots and key) and of
     # 3 bits (flags); 8 records of 1 + 11 + 11 + 12 bits.
     assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 32640, 25866, 1437, 280]

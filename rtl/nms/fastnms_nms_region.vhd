@@ -409,12 +409,19 @@ architecture rtl of fastnms_nms_region is
 
   -- Memories. Read enables and addresses are this clock's steps; writes are
   -- registered.
-  signal row_we     : std_logic;
-  signal row_wa     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal row_wd     : std_logic_vector(0 downto 0);
-  signal row_re     : std_logic;
-  signal row_ra     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-  signal row_rd     : std_logic_vector(0 downto 0);
+  signal row_we : std_logic;
+  signal row_wa : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_wd : std_logic;
+  signal row_re : std_logic;
+  signal row_ra : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal row_rd : std_logic;
+  -- The row memory holds two columns per word (yosys maps a one-bit LUT RAM
+  -- to RAM64M cells using one of their three bits): the even column's bit of
+  -- the pair being written, and the column of the word being read.
+  signal row_wdata  : std_logic_vector(1 downto 0);
+  signal row_word   : std_logic_vector(1 downto 0);
+  signal row_even   : std_logic;
+  signal row_lane   : std_logic;
   signal data_w     : data_write_t;
   signal data_spare : data_write_t;
   signal data_rd    : std_logic_vector(KB - 1 downto 0);
@@ -563,10 +570,10 @@ begin
   px_ready <= cur_go;
   -- The current pixel goes into the row memory in its own clock, so a read
   -- two columns later (the next row's first columns) finds it there.
-  row_we    <= cstep;
-  row_wa    <= cx;
-  row_wd(0) <= px_corner;
-  cstep     <= cur_go and px_valid;
+  row_we <= cstep;
+  row_wa <= cx;
+  row_wd <= px_corner;
+  cstep  <= cur_go and px_valid;
   -- Written out from registers (the same as cstep and not first_row, and
   -- lock or flush_go), one LUT each: every reader register and operation
   -- bit depends on them.
@@ -1036,7 +1043,7 @@ begin
         r_reads <= to_sl(r_ahead /= r_lastcol and r_ahead /= 0);
         -- Rows are at least 3 wide: after r_ahead = 0 comes 1.
         r_last <= to_sl(r_ahead = 0);
-        p0     <= row_rd(0);
+        p0     <= row_rd;
         if r_last = '1' then
           pm <= '0';
         else
@@ -1047,7 +1054,7 @@ begin
         -- where the reader already is (asserted below): a reader row ends
         -- at its last column, and its step there moves it to column 0 two
         -- ahead; only the bits are loaded.
-        p0        <= row_rd(0);
+        p0        <= row_rd;
         pm        <= '0';
         r_lastcol <= resize(cw - 1, XB);
       end if;
@@ -1314,14 +1321,10 @@ begin
       else
         base := unsigned(data_ahead.word2);
       end if;
-      merge := (others => '0');
-      if op.k_merge_cur = '1' then
-        merge := c_key;
-      elsif op.k_merge_pix = '1' then
-        merge := pix;
-      elsif op.k_merge_top = '1' then
-        merge := d_top.key;
-      end if;
+      -- (At most one of them; an AND-OR, one LUT per bit.)
+      merge := (c_key and (c_key'range => op.k_merge_cur)) or
+               (pix and (pix'range => op.k_merge_pix)) or
+               (d_top.key and (d_top.key'range => op.k_merge_top));
       pix_in := (others => '0');
       if op.k_pix = '1' then
         pix_in := op.score;
@@ -1623,20 +1626,47 @@ begin
   stack_re <= op.pop and op.pop_ram and op.rv;
   stack_ra <= op.ram_ra;
 
+  -- Two columns per word. A row is written in column order, so a word is
+  -- written at its even column (both bits that column's: the odd one is
+  -- written next) and again at its odd column, with the even column's bit
+  -- kept from then. Every bit is read after the clock that writes it, and
+  -- the previous row's bits of a word are all read before the current row
+  -- writes it (the reader is two columns ahead of the writer, or further
+  -- during a flush); a read in the clock of a write to its word gets the
+  -- word before it.
+  row_pairs : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if row_we = '1' and row_wa(0) = '0' then
+        row_even <= row_wd;
+      end if;
+      if row_re = '1' then
+        row_lane <= row_ra(0);
+      end if;
+    end if;
+
+  end process row_pairs;
+
   row_memory : entity work.fastnms_ram_sdp
     generic map (
-      DEPTH => MAX_WIDTH,
-      WIDTH => 1
+      DEPTH => (MAX_WIDTH + 1) / 2,
+      WIDTH => 2
     )
     port map (
       clk     => clk,
       wr_en   => row_we,
-      wr_addr => row_wa,
-      wr_data => row_wd,
+      wr_addr => row_wa(row_wa'high downto 1),
+      wr_data => row_wdata,
       rd_en   => row_re,
-      rd_addr => row_ra,
-      rd_data => row_rd
+      rd_addr => row_ra(row_ra'high downto 1),
+      rd_data => row_word
     );
+
+  row_wdata <= row_wd & row_even when row_wa(0) = '1' else
+               row_wd & row_wd;
+  row_rd    <= row_word(1) when row_lane = '1' else
+               row_word(0);
 
   data_table : entity work.fastnms_ram_sdp
     generic map (
