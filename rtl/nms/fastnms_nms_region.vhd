@@ -1322,9 +1322,9 @@ begin
         base := unsigned(data_ahead.word2);
       end if;
       -- (At most one of them; an AND-OR, one LUT per bit.)
-      merge := (c_key and (c_key'range => op.k_merge_cur)) or
-               (pix and (pix'range => op.k_merge_pix)) or
-               (d_top.key and (d_top.key'range => op.k_merge_top));
+      merge  := (c_key and (c_key'range => op.k_merge_cur)) or
+                (pix and (pix'range => op.k_merge_pix)) or
+                (d_top.key and (d_top.key'range => op.k_merge_top));
       pix_in := (others => '0');
       if op.k_pix = '1' then
         pix_in := op.score;
