@@ -1656,10 +1656,10 @@ begin
     port map (
       clk     => clk,
       wr_en   => row_we,
-      wr_addr => row_wa(row_wa'high downto 1),
+      wr_addr => resize(shift_right(row_wa, 1), clog2((MAX_WIDTH + 1) / 2)),
       wr_data => row_wdata,
       rd_en   => row_re,
-      rd_addr => row_ra(row_ra'high downto 1),
+      rd_addr => resize(shift_right(row_ra, 1), clog2((MAX_WIDTH + 1) / 2)),
       rd_data => row_word
     );
 
