@@ -159,9 +159,10 @@ PROBES = Path(__file__).resolve().parent / "probes"
 
 
 def probe_cells(entity: str, generics: dict[str, object], tmp_path: Path) -> dict[str, int]:
-    """A probe of flows/synth/probes (entity in the file of its name) through the core's
-    synthesis flow: its xc7 cell counts and logic levels."""
-    netlist, _ = ghdl_synth(entity, generics, tmp_path, [PROBES / f"{entity}.vhd"])
+    """A probe of flows/synth/probes (entity in the file of its name, which may use
+    fastnms_pkg) through the core's synthesis flow: its xc7 cell counts and logic levels."""
+    sources = [PROBES.parents[2] / "rtl" / "common" / "fastnms_pkg.vhd", PROBES / f"{entity}.vhd"]
+    netlist, _ = ghdl_synth(entity, generics, tmp_path, sources)
     cells = yosys_xc7(netlist, entity)
     print(entity, generics, summary(cells))
     return cells

@@ -32,6 +32,9 @@ library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
+library work;
+  use work.fastnms_pkg.all;
+
 entity key_flags is
   generic (
     SCORE_BITS    : positive := 12;
@@ -180,17 +183,6 @@ architecture rtl of key_flags is
     return one(stay);
 
   end function move;
-
-  function to_sl (b : boolean) return std_logic is
-  begin
-
-    if b then
-      return '1';
-    end if;
-
-    return '0';
-
-  end function to_sl;
 
   -- An operation's base (is_base) or class merging in, one-hot over the
   -- registers (the pixel merging in is pix).
