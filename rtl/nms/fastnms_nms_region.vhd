@@ -500,10 +500,12 @@ architecture rtl of fastnms_nms_region is
   signal rstep     : std_logic;
   signal r_last    : std_logic; -- r_ahead = 1, predicted
   signal checks_on : boolean;   -- false until the first reset: the invariants hold from then on
-  signal r_next    : unsigned(XB - 1 downto 0);
-  signal f_prime   : std_logic;
-  signal row_next0 : std_logic; -- this clock reads the next row's column 0
-  signal holds0    : std_logic; -- the row memory's output is that bit
+  -- The row memory's last column written (simulation only: the order is asserted).
+  signal row_last_wa : integer range -1 to MAX_WIDTH := -1;
+  signal r_next      : unsigned(XB - 1 downto 0);
+  signal f_prime     : std_logic;
+  signal row_next0   : std_logic; -- this clock reads the next row's column 0
+  signal holds0      : std_logic; -- the row memory's output is that bit
 
 begin
 
@@ -1068,6 +1070,13 @@ begin
                   (rcol /= 0 or r_ahead /= 2))
         report "fastnms_nms_region: the reader idle away from column 0"
         severity failure;
+      -- The row memory's two columns per word rely on this order.
+      if row_we = '1' then
+        assert not checks_on or rst = '1' or row_wa = 0 or to_integer(row_wa) = row_last_wa + 1
+          report "fastnms_nms_region: the row memory written out of column order"
+          severity failure;
+        row_last_wa <= to_integer(row_wa);
+      end if;
       -- synthesis translate_on
 
       -- Primed: the reader's prefetch is valid for its next row (lock-step
@@ -1363,6 +1372,11 @@ begin
         severity failure;
       assert data_landing = (data_w0 and op.r_col0)
         report "fastnms_nms_region: data_landing out of step"
+        severity failure;
+      assert not checks_on or
+             ((op.k_merge_cur and op.k_merge_pix) or (op.k_merge_cur and op.k_merge_top) or
+              (op.k_merge_pix and op.k_merge_top)) = '0'
+        report "fastnms_nms_region: two classes merging in at once"
         severity failure;
       assert not (op.push = '1' and op.rv = '1' and data_w.en = '1' and
                   (data_w.addr & '0') = data_ahead.addr2 and (op.r_col0 = '0' or data_w0 = '0'))
