@@ -54,6 +54,7 @@ class Entry:
     head: int = NONE  # slot of its first run in the current row, NONE if none yet
     tail: int = NONE  # slot of its latest run in the current row
     merged: bool = False  # holds the data of the entry below too (merged with it)
+    merge_step: int = -2  # step of the last full-key merge into its data (Stats.chained_merges)
 
 
 @dataclass
@@ -63,6 +64,7 @@ class Group:
     data: tuple[int, int, int]
     head: int
     tail: int
+    merge_step: int = -2
 
 
 @dataclass
@@ -72,6 +74,11 @@ class Stats:
     flush_steps: int = 0
     records: int = 0
     clocks: int = 0
+    # Full-key merges (two classes, step 3) with an operand that the previous step's full-key
+    # merge produced: the hardware cannot compare it on registers of its own before then
+    # (fastnms_nms_region.md, Limits). By the column of the second merge: 0, or later.
+    chained_merges_col0: int = 0
+    chained_merges_in_row: int = 0
 
 
 @dataclass
@@ -111,6 +118,8 @@ class RegionStream:
         self.rows_seen = 0
         self.stack: list[Entry] = []
         self.stats = Stats()
+        self.step_count = 0
+        self.table_merge_step: dict[int, int] = {}  # data table slot -> its key's merge_step
         self.out: list[tuple[int, int, int]] = []
         self._reset_current()
 
@@ -137,6 +146,7 @@ class RegionStream:
         row, or None (flush). prev_tag / cur_tag: (frame, row) of those rows.
         """
         eol = x == width - 1
+        self.step_count += 1
         for t in self.tables:
             t.writes_this_step = 0
         # The last column of a row may write a table twice (a current run and a previous-row
@@ -158,7 +168,7 @@ class RegionStream:
                 self.stack[-1].last = last
             else:
                 data = self.data.read(slot, prev_tag)
-                self.stack.append(Entry(last, data))
+                self.stack.append(Entry(last, data, merge_step=self.table_merge_step[slot]))
                 pushed = True
                 assert len(self.stack) <= self.stack_depth, "stack overflow"
                 self.stats.max_depth = max(self.stats.max_depth, len(self.stack))
@@ -181,6 +191,7 @@ class RegionStream:
                     self.last.write(top.tail, False, cur_tag)
                     self.head.write((self.parity[cur_tag], g.head), False, cur_tag)
                 top.tail = g.tail
+                self._count_chained(x, top, g)
                 top.data = best(top.data, g.data)
                 self.group = None
                 self.attached = True
@@ -188,6 +199,7 @@ class RegionStream:
                 # The current run's class is the entry below: the new entry takes it over.
                 below = self.stack[-2]
                 assert below.head != NONE
+                self._count_chained(x, top, below)
                 top.data = best(top.data, below.data)
                 top.head, top.tail = below.head, below.tail
                 top.merged = True
@@ -209,8 +221,9 @@ class RegionStream:
             if e.merged:
                 below = self.stack[-1]
                 below.data, below.head, below.tail = e.data, e.head, e.tail
+                below.merge_step = e.merge_step
             elif self.active and self.attached:
-                self.group = Group(e.data, e.head, e.tail)
+                self.group = Group(e.data, e.head, e.tail, e.merge_step)
                 self.attached = False
             elif e.head != NONE:
                 self._finalize(e, cur_tag)
@@ -231,8 +244,18 @@ class RegionStream:
         """The class has all its current-row runs: its data waits at its first run's slot,
         which is marked first, and its latest run is marked last."""
         self.data.write(g.head, g.data, tag)
+        self.table_merge_step[g.head] = g.merge_step
         self.head.write((self.parity[tag], g.head), True, tag)
         self.last.write(g.tail, True, tag)
+
+    def _count_chained(self, x: int, a: Entry, b: Entry | Group) -> None:
+        """A full-key merge of a and b (into a) in this step."""
+        if self.step_count - 1 in (a.merge_step, b.merge_step):
+            if x == 0:
+                self.stats.chained_merges_col0 += 1
+            else:
+                self.stats.chained_merges_in_row += 1
+        a.merge_step = self.step_count
 
     # ---- clock schedule -------------------------------------------------------------------
 

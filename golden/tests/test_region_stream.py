@@ -91,3 +91,31 @@ def test_one_clock_per_pixel_whatever_the_content(connectivity, rng):
         model, eofs = run(frames, connectivity, out_depth=8)
         assert np.diff(eofs).tolist() == [w * h] * 2
         assert eofs[-1] == 3 * w * h + w + 1
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_where_full_key_merges_chain(connectivity, rng):
+    """A full-key merge (two classes) whose operand the previous column's full-key merge made:
+    under 4-connectivity only at a row's column 0 (the class finalized at the previous row's
+    last column, pushed again), under 8-connectivity also inside a row (a diagonal contact
+    whose class is detached by its pop, then the next run's push). fastnms_nms_region.md,
+    Limits, explains what this means for a comparison in a pipeline stage of its own."""
+    col0 = in_row = 0
+    for width in (5, 17, 64):
+        for corner in hard_maps(width, rng) + [rng.random((14, width)) < p for p in (0.3, 0.6)]:
+            model, _ = run([(corner, rng.integers(0, 3, corner.shape))], connectivity)
+            col0 += model.stats.chained_merges_col0
+            in_row += model.stats.chained_merges_in_row
+    print(f"region{connectivity}: chained full-key merges at column 0 {col0}, in a row {in_row}")
+    assert col0 > 0
+    assert (in_row > 0) == (connectivity == 8)
+    # The smallest case inside a row: a run starts at x under the gap between two runs above;
+    # at x it touches the left one diagonally, which pops, at x + 1 the right one.
+    corner, score = grid(
+        """
+        1 . 1
+        . 1 1
+        """
+    )
+    model, _ = run([(corner, score)], connectivity)
+    assert model.stats.chained_merges_in_row == (connectivity == 8)
