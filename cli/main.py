@@ -21,6 +21,7 @@ import cv2
 import numpy as np
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
+from fastnms.golden.orb import PATCH_SIZE, OrbFeatures, orb_features
 from fastnms.sim import regs
 from fastnms.sim.run import (
     ENGINES,
@@ -44,6 +45,7 @@ EXIT_USAGE = 2
 LOW_BGR = (0, 0, 128)
 HIGH_BGR = (0, 255, 255)
 BOX_HALF = 3  # 7x7 outline, the size of the FAST circle
+ORIENTATION_LENGTH = PATCH_SIZE // 2  # the orientation line reaches the patch's rim
 
 
 class UsageError(Exception):
@@ -143,6 +145,18 @@ def csv_bytes(records: np.ndarray) -> bytes:
     return ("\n".join(lines) + "\n").encode("ascii")
 
 
+def orb_csv_bytes(features: OrbFeatures) -> bytes:
+    """x,y,score,angle,descriptor: the angle with 9 significant digits (it reads back as the
+    same float32), the descriptor as 64 lowercase hex digits, byte 0 first."""
+    lines = ["x,y,score,angle,descriptor"] + [
+        f"{x},{y},{s},{angle:.9g},{bytes(d).hex()}"
+        for (x, y, s), angle, d in zip(
+            features.records.tolist(), features.angles.tolist(), features.descriptors, strict=True
+        )
+    ]
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
 def score_colours(scores: np.ndarray) -> np.ndarray:
     """(N, 3) BGR colours from LOW_BGR at the lowest score to HIGH_BGR at the highest."""
     scores = scores.astype(np.float64)
@@ -156,8 +170,9 @@ def score_colours(scores: np.ndarray) -> np.ndarray:
     return np.rint(low + frac[:, None] * (high - low)).astype(np.uint8)
 
 
-def overlay(img: np.ndarray, records: np.ndarray) -> np.ndarray:
-    """The grey image as BGR with a 7x7 outline around each corner, coloured by score."""
+def overlay(img: np.ndarray, records: np.ndarray, angles: np.ndarray | None = None) -> np.ndarray:
+    """The grey image as BGR with a 7x7 outline around each corner, coloured by score, and
+    with angles (degrees, y down) a line from each corner along its orientation."""
     canvas = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR)
     if records.shape[0] == 0:
         return canvas
@@ -165,13 +180,15 @@ def overlay(img: np.ndarray, records: np.ndarray) -> np.ndarray:
     # Weakest first, so the strongest corners stay visible where boxes overlap.
     for i in np.argsort(records[:, 2], kind="stable"):
         x, y = int(records[i, 0]), int(records[i, 1])
-        cv2.rectangle(
-            canvas,
-            (x - BOX_HALF, y - BOX_HALF),
-            (x + BOX_HALF, y + BOX_HALF),
-            tuple(int(c) for c in colours[i]),
-            1,
-        )
+        colour = tuple(int(c) for c in colours[i])
+        cv2.rectangle(canvas, (x - BOX_HALF, y - BOX_HALF), (x + BOX_HALF, y + BOX_HALF), colour, 1)
+        if angles is not None:
+            t = np.radians(float(angles[i]))
+            tip = (
+                round(x + ORIENTATION_LENGTH * np.cos(t)),
+                round(y + ORIENTATION_LENGTH * np.sin(t)),
+            )
+            cv2.line(canvas, (x, y), tip, colour, 1)
     return canvas
 
 
@@ -229,6 +246,14 @@ def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
         ),
     )
     add_detection_args(p)
+    p.add_argument(
+        "--orb",
+        action="store_true",
+        help="ORB features as OpenCV computes them: keep the keypoints 31 pixels or more from "
+        "each border and add each one's orientation and 256-bit rotated BRIEF descriptor "
+        "(CSV x,y,score,angle,descriptor: the angle in degrees as a float32, the "
+        "descriptor as 64 hex digits, byte 0 first; the PNG draws each orientation)",
+    )
     return p
 
 
@@ -408,14 +433,20 @@ def load_frames(paths: Sequence[str]) -> list[tuple[str, np.ndarray]]:
     return frames
 
 
-def write_outputs(img: np.ndarray, records: np.ndarray, args: argparse.Namespace, extra=()) -> None:
+def write_outputs(
+    img: np.ndarray, records: np.ndarray | OrbFeatures, args: argparse.Namespace, extra=()
+) -> None:
     """--csv, --png and any (path, bytes) in extra, all or none."""
+    if isinstance(records, OrbFeatures):
+        table, angles, records = orb_csv_bytes(records), records.angles, records.records
+    else:
+        table, angles = csv_bytes(records), None
     try:
         with output_set() as out:
             if args.csv:
-                out.write(args.csv, csv_bytes(records))
+                out.write(args.csv, table)
             if args.png:
-                out.write(args.png, png_bytes(overlay(img, records)))
+                out.write(args.png, png_bytes(overlay(img, records, angles)))
             for path, data in extra:
                 out.write(path, data)
     except OSError as e:
@@ -428,14 +459,19 @@ def run_golden(args: argparse.Namespace) -> int:
     img = load_input(args.image)
 
     start = time.perf_counter()
-    records = detect(img, args.threshold, args.score, args.nms)
+    if args.orb:
+        result = orb_features(img, args.threshold, args.score, args.nms)
+        count, what = len(result.records), "keypoints with ORB descriptors"
+    else:
+        result = detect(img, args.threshold, args.score, args.nms)
+        count, what = len(result), "corners"
     elapsed = time.perf_counter() - start
-    write_outputs(img, records, args)
+    write_outputs(img, result, args)
 
     h, w = img.shape
     print(
         f"{os.path.basename(args.image)}: {w}x{h}, score={args.score} nms={args.nms} "
-        f"threshold={args.threshold}: {records.shape[0]} corners in {elapsed:.3f} s"
+        f"threshold={args.threshold}: {count} {what} in {elapsed:.3f} s"
     )
     return 0
 

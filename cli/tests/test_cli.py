@@ -16,6 +16,7 @@ import pytest
 from fastnms import main as cli
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.golden.orb import orb_features
 
 SUMMARY = re.compile(
     r"^(?P<name>\S+): (?P<w>\d+)x(?P<h>\d+), score=(?P<score>\w+) nms=(?P<nms>\w+) "
@@ -298,3 +299,80 @@ def test_console_script(grey_image, tmp_path: Path):
     )
     assert done.returncode == 2 and done.stdout == ""
     assert done.stderr.startswith("fastnms: error: ") and done.stderr.count("\n") == 1
+
+
+# ---- --orb ------------------------------------------------------------------------------
+
+ORB_SUMMARY = re.compile(r": (?P<n>\d+) keypoints with ORB descriptors in \d+\.\d{3} s$")
+
+
+@pytest.fixture
+def textured_image(tmp_path: Path, rng: np.random.Generator) -> tuple[Path, np.ndarray]:
+    img = cv2.GaussianBlur(rng.integers(0, 256, (120, 160), dtype=np.uint8), (0, 0), 2.0)
+    img = cv2.normalize(img, None, 0, 255, cv2.NORM_MINMAX)
+    path = tmp_path / "texture.png"
+    assert cv2.imwrite(str(path), img)
+    return path, img
+
+
+@pytest.mark.parametrize("nms", ["3x3", "region8"])
+def test_golden_orb_writes_csv_and_png(textured_image, tmp_path: Path, capsys, nms: str):
+    path, img = textured_image
+    out_csv, out_png = tmp_path / "o.csv", tmp_path / "o.png"
+    argv = ["golden", str(path), "--orb", "-t", "10", "--nms", nms]
+    status, out, err = run([*argv, "--csv", str(out_csv), "--png", str(out_png)], capsys)
+    assert (status, err) == (0, "")
+    want = orb_features(img, 10, "opencv", nms)
+    m = ORB_SUMMARY.search(out.strip())
+    assert m and int(m["n"]) == len(want.records) > 0, out
+
+    with out_csv.open(newline="") as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == ["x", "y", "score", "angle", "descriptor"]
+    assert len(rows) == len(want.records) + 1
+    for row, rec, angle, des in zip(
+        rows[1:], want.records, want.angles, want.descriptors, strict=True
+    ):
+        assert [int(v) for v in row[:3]] == rec.tolist()
+        assert np.float32(float(row[3])).view(np.uint32) == angle.view(np.uint32)
+        assert re.fullmatch(r"[0-9a-f]{64}", row[4]) and bytes.fromhex(row[4]) == bytes(des)
+
+    png = cv2.imread(str(out_png), cv2.IMREAD_UNCHANGED)
+    strongest = np.argsort(want.records[:, 2], kind="stable")[-1]
+    x, y, _ = want.records[strongest].tolist()
+    t = np.radians(float(want.angles[strongest]))
+    tip = (
+        round(x + cli.ORIENTATION_LENGTH * np.cos(t)),
+        round(y + cli.ORIENTATION_LENGTH * np.sin(t)),
+    )
+    assert png[tip[1], tip[0]].tolist() == list(cli.HIGH_BGR)  # the line's end, drawn last
+
+
+def test_golden_orb_on_a_small_image_has_a_header_only(textured_image, tmp_path: Path, capsys):
+    """62 pixels high: no row is 31 pixels from both borders, although FAST finds corners."""
+    _, img = textured_image
+    path, out_csv = tmp_path / "low.png", tmp_path / "o.csv"
+    assert cv2.imwrite(str(path), img[:62]) and len(detect(img[:62], 10)) > 0
+    status, out, err = run(
+        ["golden", str(path), "--orb", "-t", "10", "--csv", str(out_csv)], capsys
+    )
+    assert (status, err) == (0, "") and ORB_SUMMARY.search(out.strip())["n"] == "0"
+    assert out_csv.read_text() == "x,y,score,angle,descriptor\n"
+
+
+@pytest.mark.parametrize("bad", [["-t", "300"], ["--nms", "5x5"], ["--orb=1"]])
+def test_golden_orb_bad_arguments(textured_image, tmp_path: Path, capsys, bad: list[str]):
+    path, _ = textured_image
+    out_csv = tmp_path / "o.csv"
+    status, out, err = run(["golden", str(path), "--orb", *bad, "--csv", str(out_csv)], capsys)
+    assert_usage_error(status, out, err)
+    assert not out_csv.exists()
+
+
+def test_golden_orb_bad_image(tmp_path: Path, capsys):
+    bad = tmp_path / "bad.png"
+    bad.write_bytes(b"not an image")
+    out_csv = tmp_path / "o.csv"
+    status, out, err = run(["golden", str(bad), "--orb", "--csv", str(out_csv)], capsys)
+    assert_usage_error(status, out, err)
+    assert not out_csv.exists()
