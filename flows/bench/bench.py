@@ -2,7 +2,8 @@
 top (fastnms_axi) in every score x NMS configuration on the fast simulation
 engine (GHDL's netlist compiled by Verilator, through fastnms.sim.run.run_rtl),
 the cocotb engine's speed on a short run beside it, the region NMS's memory
-against the paper's formula, and the golden model's and OpenCV's time per
+against the paper's formula, the golden ORB against cv2.ORB on every real
+photograph (flows/bench/orb.py), and the golden model's and OpenCV's time per
 frame on this machine. Writes build/bench/summary.json and the bench section of
 docs/results.md (flows/report/report.py).
 
@@ -40,6 +41,7 @@ from fastnms.sim.run import SimError, SimResult, generics_for, run_rtl
 from fastnms.sim.sources import REPO
 from fastnms.testing import images as testimages
 
+from flows.bench import orb as orb_bench
 from flows.bench import software
 from flows.report import report
 
@@ -492,10 +494,24 @@ def run(args: argparse.Namespace) -> dict:
 
     # The software timings first, alone on the machine.
     t = time.perf_counter()
-    software = software_times(frames[0], args.threshold)
+    software = software_times(frames[0], args.threshold) + orb_bench.times(
+        frames[0], args.threshold
+    )
     for row in software:
         print(f"bench: {row['what']:<40} {row['ms']:8.1f} ms  {row['corners']} corners")
     phases["software"] = time.perf_counter() - t
+
+    t = time.perf_counter()
+    try:
+        orb = orb_bench.agreement_table(testimages.real_images(), args.threshold)
+    except orb_bench.OrbMismatch as e:
+        raise BenchError(str(e)) from None
+    print(
+        f"bench: ORB on {len(orb['rows'])} photographs: keypoints and angles equal to "
+        f"cv2.ORB's; with the bit-exact blur {orb['differing']} of {orb['keypoints']} "
+        f"descriptors differ, {orb['mean_bits']:.3f} bits on average, at most {orb['max_bits']}"
+    )
+    phases["orb"] = time.perf_counter() - t
 
     t = time.perf_counter()
     generics = [bench_generics(s, n, args.width, args.height) for s, n in configs]
@@ -590,6 +606,7 @@ def run(args: argparse.Namespace) -> dict:
         "engines": engines,
         "region_memory": memory,
         "software": software,
+        "orb": orb,
         "machine": {
             **machine(),
             "ghdl": ghdl_version(),
