@@ -19,6 +19,7 @@ from collections.abc import Callable, Iterator, Sequence
 
 import cv2
 import numpy as np
+from fastnms.golden.budget import CELL_SIZES, MAX_PER_CELL, cell_budget
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
 from fastnms.golden.orb import PATCH_SIZE, OrbFeatures, orb_features
@@ -69,6 +70,31 @@ def threshold_arg(text: str) -> int:
         ) from None
     if not 0 <= value <= 255:
         raise argparse.ArgumentTypeError(f"threshold must be an integer in 0..255, got {value}")
+    return value
+
+
+def cell_arg(text: str) -> int:
+    """argparse type: a cell size, a power of two in 16..256."""
+    sizes = ", ".join(map(str, CELL_SIZES))
+    try:
+        value = int(text, 10)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"cell must be one of {sizes}, got {text!r}") from None
+    if value not in CELL_SIZES:
+        raise argparse.ArgumentTypeError(f"cell must be one of {sizes}, got {value}")
+    return value
+
+
+def per_cell_arg(text: str) -> int:
+    """argparse type: keypoints per cell, 1..15."""
+    try:
+        value = int(text, 10)
+    except ValueError:
+        value = None
+    if value is None or not 1 <= value <= MAX_PER_CELL:
+        raise argparse.ArgumentTypeError(
+            f"per-cell must be an integer in 1..{MAX_PER_CELL}, got {text!r}"
+        )
     return value
 
 
@@ -253,6 +279,21 @@ def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
         "each border and add each one's orientation and 256-bit rotated BRIEF descriptor "
         "(CSV x,y,score,angle,descriptor: the angle in degrees as a float32, the "
         "descriptor as 64 hex digits, byte 0 first; the PNG draws each orientation)",
+    )
+    p.add_argument(
+        "--cell",
+        type=cell_arg,
+        metavar="N",
+        help="keypoint budget: cells of N x N pixels from the origin, N a power of two in "
+        "16..256 (with --per-cell)",
+    )
+    p.add_argument(
+        "--per-cell",
+        type=per_cell_arg,
+        metavar="K",
+        help=f"keypoint budget: keep the K (1..{MAX_PER_CELL}) best-scoring keypoints of "
+        "each cell, ties to the first in raster order (with --cell; with --orb after the "
+        "31-pixel border)",
     )
     return p
 
@@ -455,23 +496,29 @@ def write_outputs(
 
 
 def run_golden(args: argparse.Namespace) -> int:
+    if (args.cell is None) != (args.per_cell is None):
+        raise UsageError("--cell and --per-cell go together")
+    budget = (args.cell, args.per_cell or 0)
     check_outputs(args.csv, args.png)
     img = load_input(args.image)
 
     start = time.perf_counter()
     if args.orb:
-        result = orb_features(img, args.threshold, args.score, args.nms)
+        result = orb_features(img, args.threshold, args.score, args.nms, *budget)
         count, what = len(result.records), "keypoints with ORB descriptors"
     else:
         result = detect(img, args.threshold, args.score, args.nms)
+        if args.per_cell:
+            result = cell_budget(result, *budget)
         count, what = len(result), "corners"
     elapsed = time.perf_counter() - start
     write_outputs(img, result, args)
 
     h, w = img.shape
+    within = f" (at most {args.per_cell} per {args.cell}x{args.cell} cell)" if args.cell else ""
     print(
         f"{os.path.basename(args.image)}: {w}x{h}, score={args.score} nms={args.nms} "
-        f"threshold={args.threshold}: {count} {what} in {elapsed:.3f} s"
+        f"threshold={args.threshold}: {count} {what}{within} in {elapsed:.3f} s"
     )
     return 0
 

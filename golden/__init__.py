@@ -5,6 +5,7 @@ OpenCV's cv::FAST (TYPE_9_16), plus the paper's SAD score and region NMS, and OR
 This package is the contract the RTL is checked against.
 """
 
+from .budget import cell_budget
 from .fast import CIRCLE_OFFSETS, fast_maps
 from .image import ImageError, load_grey
 from .model import NMS_MODES, SCORES, detect
@@ -17,6 +18,7 @@ __all__ = [
     "SCORES",
     "OrbFeatures",
     "ImageError",
+    "cell_budget",
     "detect",
     "detect_and_compute",
     "fast_maps",

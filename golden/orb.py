@@ -37,6 +37,7 @@ from typing import NamedTuple
 import cv2
 import numpy as np
 
+from .budget import cell_budget, validate_budget
 from .fast import validate_image, validate_score, validate_threshold
 from .model import DEFAULT_THRESHOLD, detect, validate_nms
 from .orb_pattern import BIT_PATTERN_31
@@ -207,10 +208,16 @@ def orb_features(
     threshold: int = DEFAULT_THRESHOLD,
     score: str = "opencv",
     nms: str = "3x3",
+    cell: int | None = None,
+    per_cell: int = 0,
 ) -> OrbFeatures:
-    """The NMS's keypoints inside cv2.ORB's border with their angles and descriptors."""
+    """The NMS's keypoints inside cv2.ORB's border, then (per_cell > 0) the budget of
+    per_cell keypoints per cell x cell square (budget.py), with their angles and descriptors."""
+    cell, per_cell = validate_budget(cell, per_cell)
     records = detect(img, threshold, score, nms)
     records = records[in_orb_border(records, img.shape)]
+    if per_cell:
+        records = cell_budget(records, cell, per_cell)
     if len(records) == 0:
         return OrbFeatures(
             records, np.zeros(0, np.float32), np.zeros((0, DESCRIPTOR_BYTES), np.uint8)
@@ -226,24 +233,31 @@ def detect_and_compute(
     score: str = "opencv",
     nms: str = "3x3",
     orb: bool = True,
+    cell: int | None = None,
+    per_cell: int = 0,
 ) -> tuple[tuple[cv2.KeyPoint, ...], np.ndarray | None]:
     """Keypoints and descriptors in OpenCV's own types, as cv2.ORB.detectAndCompute gives
     them: a tuple of cv2.KeyPoint (pt, response = score, angle, size 31, octave 0) and an
     (N, 32) uint8 array (also for N = 0, where OpenCV gives None), sorted by y then x.
+    With per_cell > 0, at most per_cell keypoints per cell x cell square (budget.py).
 
-    With orb=False: every keypoint of the NMS, as cv2.FastFeatureDetector gives them
-    (size 7, angle -1), and None for the descriptors.
+    With orb=False: every keypoint of the NMS (within the budget), as
+    cv2.FastFeatureDetector gives them (size 7, angle -1), and None for the descriptors.
     """
     validate_image(img)
     validate_threshold(threshold)
     validate_score(score)
     validate_nms(nms)
+    cell, per_cell = validate_budget(cell, per_cell)
     if not orb:
         records = detect(img, threshold, score, nms)
-        return tuple(
+        if per_cell:
+            records = cell_budget(records, cell, per_cell)
+        keypoints = tuple(
             cv2.KeyPoint(float(x), float(y), 7.0, -1.0, float(s)) for x, y, s in records.tolist()
-        ), None
-    f = orb_features(img, threshold, score, nms)
+        )
+        return keypoints, None
+    f = orb_features(img, threshold, score, nms, cell, per_cell)
     keypoints = tuple(
         cv2.KeyPoint(float(x), float(y), float(PATCH_SIZE), float(angle), float(s), 0, -1)
         for (x, y, s), angle in zip(f.records.tolist(), f.angles.tolist(), strict=True)

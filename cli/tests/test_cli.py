@@ -14,6 +14,7 @@ import cv2
 import numpy as np
 import pytest
 from fastnms import main as cli
+from fastnms.golden.budget import cell_budget
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
 from fastnms.golden.orb import orb_features
@@ -374,5 +375,57 @@ def test_golden_orb_bad_image(tmp_path: Path, capsys):
     bad.write_bytes(b"not an image")
     out_csv = tmp_path / "o.csv"
     status, out, err = run(["golden", str(bad), "--orb", "--csv", str(out_csv)], capsys)
+    assert_usage_error(status, out, err)
+    assert not out_csv.exists()
+
+
+# ---- --cell / --per-cell ----------------------------------------------------------------
+
+
+@pytest.mark.parametrize("orb", [False, True])
+def test_golden_budget(textured_image, tmp_path: Path, capsys, orb: bool):
+    path, img = textured_image
+    out_csv = tmp_path / "b.csv"
+    argv = [
+        "golden",
+        str(path),
+        "-t",
+        "5",
+        "--cell",
+        "32",
+        "--per-cell",
+        "2",
+        "--csv",
+        str(out_csv),
+    ]
+    status, out, err = run([*argv, *(["--orb"] if orb else [])], capsys)
+    assert (status, err) == (0, "") and "(at most 2 per 32x32 cell)" in out
+    with out_csv.open(newline="") as f:
+        rows = [[int(v) for v in row[:3]] for row in list(csv.reader(f))[1:]]
+    if orb:
+        want = orb_features(img, 5, cell=32, per_cell=2).records
+    else:
+        want = cell_budget(detect(img, 5), 32, 2)
+    assert rows == want.tolist() and 0 < len(rows) < len(detect(img, 5))
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        ["--cell", "48", "--per-cell", "2"],
+        ["--cell", "8", "--per-cell", "2"],
+        ["--cell", "512", "--per-cell", "2"],
+        ["--cell", "x", "--per-cell", "2"],
+        ["--cell", "32", "--per-cell", "0"],
+        ["--cell", "32", "--per-cell", "16"],
+        ["--cell", "32", "--per-cell", "two"],
+        ["--cell", "32"],
+        ["--per-cell", "3"],
+    ],
+)
+def test_golden_bad_budget(textured_image, tmp_path: Path, capsys, bad: list[str]):
+    path, _ = textured_image
+    out_csv = tmp_path / "b.csv"
+    status, out, err = run(["golden", str(path), *bad, "--csv", str(out_csv)], capsys)
     assert_usage_error(status, out, err)
     assert not out_csv.exists()
