@@ -26,12 +26,15 @@ from fastnms.golden.orb import PATCH_SIZE, OrbFeatures, orb_features
 from fastnms.sim import regs
 from fastnms.sim.run import (
     ENGINES,
+    LARGEST_HEIGHT,
+    LARGEST_WIDTH,
     MAX_HEIGHT,
     MAX_WIDTH,
     MIN_SIZE,
     FrameResult,
     SimError,
     SimResult,
+    build_size,
     check_size,
     generics_for,
     run_rtl,
@@ -371,7 +374,9 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
             "Simulate the IP's top level, fastnms_axi, on the images, sent back to back as "
             "consecutive frames (AXI4-Stream video in, AXI4-Lite set-up of each frame's size "
             "and threshold, corner records out), and write the corners it emitted. "
-            f"{GREY_NOTE} Frames from {MIN_SIZE}x{MIN_SIZE} to {MAX_WIDTH}x{MAX_HEIGHT}. "
+            f"{GREY_NOTE} Frames from {MIN_SIZE}x{MIN_SIZE} to {LARGEST_WIDTH}x{LARGEST_HEIGHT}: "
+            f"the simulated IP is built for {MAX_WIDTH}x{MAX_HEIGHT} when every frame fits, "
+            f"else for {LARGEST_WIDTH}x{LARGEST_HEIGHT} (an engine build of its own). "
             "Needs the source tree, GHDL and (default engine) Verilator with a C++ compiler; "
             "the first run of a configuration builds the engine. Prints corners, cycles, "
             "cycles per pixel and wall time per frame. With several frames the CSV has a "
@@ -560,7 +565,7 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             f"--ppc {args.ppc} needs --nms 3x3 or none (the region NMS takes one pixel per clock)"
         )
     for name, img in frames:
-        why = check_size(img, args.ppc)
+        why = check_size(img, args.ppc, LARGEST_WIDTH, LARGEST_HEIGHT)
         if why:
             raise UsageError(f"{name}: {why}")
     if args.engine != "verilator" and (args.hblank or args.vblank):
@@ -579,7 +584,9 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             timing=timing_of(args),
             progress=progress,
             announce=announce,
-            generics=generics_for(args.score, args.nms, args.ppc),
+            generics=generics_for(
+                args.score, args.nms, args.ppc, build_size([img.shape for _, img in frames])
+            ),
         )
     except SimError as e:
         raise UsageError(str(e)) from None

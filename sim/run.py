@@ -29,9 +29,11 @@ from .ghdl import BUILD, build_and_run
 from .sources import RTL
 from .timing import Timing
 
-# The largest frame the simulated IP is built for (its MAX_WIDTH, MAX_HEIGHT).
-MAX_WIDTH = 1920
-MAX_HEIGHT = 1080
+# The sizes the command line builds the simulated IP for (its MAX_WIDTH, MAX_HEIGHT): the
+# first that holds every frame given, so full-HD frames keep the smaller, faster build.
+BUILD_SIZES: tuple[tuple[int, int], ...] = ((1920, 1080), (3840, 2160))
+MAX_WIDTH, MAX_HEIGHT = BUILD_SIZES[0]  # the default build
+LARGEST_WIDTH, LARGEST_HEIGHT = BUILD_SIZES[-1]
 MIN_SIZE = 7
 ENGINES = ("verilator", "cocotb")
 # The STATUS bits that flag malformed video.
@@ -105,12 +107,22 @@ def decode_words(words: np.ndarray) -> np.ndarray:
     return recs[np.lexsort((recs[:, 0], recs[:, 1]))].reshape(-1, 3)
 
 
-def generics_for(score: str, nms: str, ppc: int = 1) -> dict[str, object]:
+def build_size(shapes: Sequence[tuple[int, int]]) -> tuple[int, int]:
+    """(MAX_WIDTH, MAX_HEIGHT): the first of BUILD_SIZES that holds every (height, width)."""
+    for width, height in BUILD_SIZES:
+        if all(w <= width and h <= height for h, w in shapes):
+            return width, height
+    return BUILD_SIZES[-1]
+
+
+def generics_for(
+    score: str, nms: str, ppc: int = 1, size: tuple[int, int] = (MAX_WIDTH, MAX_HEIGHT)
+) -> dict[str, object]:
     """The top's generics for the CLI's builds (PPC only when above 1, so that
     the one-pixel builds keep their names)."""
     generics: dict[str, object] = {
-        "MAX_WIDTH": MAX_WIDTH,
-        "MAX_HEIGHT": MAX_HEIGHT,
+        "MAX_WIDTH": size[0],
+        "MAX_HEIGHT": size[1],
         "SCORE": score,
         "NMS": nms,
     }

@@ -11,6 +11,7 @@ import cv2
 import numpy as np
 import pytest
 from fastnms import main as cli
+from fastnms.golden.image import load_grey
 from fastnms.golden.model import detect
 from fastnms.sim import run as sim
 from fastnms.testing import images as testimages
@@ -185,7 +186,7 @@ def test_compare_identical_and_different(photo: Path, capsys, monkeypatch):
     assert "DIFFERENT" in out and "rtl only" in out and "reference only" in out
 
 
-@pytest.mark.parametrize("size", [(6, 20), (20, 6), (1921, 8), (8, 1081)])
+@pytest.mark.parametrize("size", [(6, 20), (20, 6), (3841, 8), (8, 2161)])
 def test_sim_refuses_sizes_outside_the_ip(tmp_path: Path, capsys, size: tuple[int, int]):
     path = tmp_path / "odd.png"
     cv2.imwrite(str(path), np.zeros((size[1], size[0]), dtype=np.uint8))
@@ -194,6 +195,37 @@ def test_sim_refuses_sizes_outside_the_ip(tmp_path: Path, capsys, size: tuple[in
     err = capsys.readouterr().err
     assert err.startswith("fastnms: error: ") and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_build_size_follows_the_largest_frame():
+    """Full HD keeps the 1920x1080 build; a larger frame (either way) takes 3840x2160."""
+    assert sim.build_size([(1080, 1920), (7, 7)]) == (1920, 1080)
+    assert sim.build_size([(1080, 1920), (8, 1928)]) == (3840, 2160)
+    assert sim.build_size([(1088, 8)]) == (3840, 2160)
+    assert sim.generics_for("opencv", "3x3", 4, (3840, 2160)) == {
+        "MAX_WIDTH": 3840,
+        "MAX_HEIGHT": 2160,
+        "SCORE": "opencv",
+        "NMS": "3x3",
+        "PPC": 4,
+    }
+
+
+@pytest.mark.slow
+def test_sim_4k_at_four_pixels_per_clock(tmp_path: Path):
+    """A 3840x2160 photograph through `fastnms sim --ppc 4` (the top built for 3840x2160,
+    the build `make bench` uses): the golden model's corners, W x H / 4 + 4 clocks apart."""
+    path, out_json, out_csv = tmp_path / "uhd.png", tmp_path / "c.json", tmp_path / "c.csv"
+    img = testimages.cover(load_grey(testimages.real_images()[0]), 3840, 2160)
+    cv2.imwrite(str(path), img)
+    argv = ["sim", str(path), str(path), "--ppc", "4", "--json", str(out_json)]
+    assert cli.main([*argv, "--csv", str(out_csv)]) == 0
+    summary = json.loads(out_json.read_text())
+    want = [tuple(int(v) for v in r) for r in detect(img, 20)]
+    assert [f["corners"] for f in summary["frames"]] == [len(want)] * 2
+    with open(out_csv) as f:
+        got = [(int(r["x"]), int(r["y"]), int(r["score"])) for r in csv.DictReader(f)]
+    assert got == [(x, y, s) for _ in range(2) for x, y, s in want]
 
 
 def test_sim_bad_input(tmp_path: Path, capsys):
