@@ -136,7 +136,8 @@ def block_entries(width: int, height: int) -> list[Entry]:
     generics they have inside the top at this size: the window and its line
     buffer and RAM, the corner FIFO and skid buffer (32-bit records of opencv at
     1920x1080), the 32-bit statistics counter, the position counter, the
-    `none` NMS, and the 3x3 NMS's serializer for 4 pixels per clock."""
+    `none` NMS, the 3x3 NMS's serializer for 4 pixels per clock, and the keypoint
+    budget (not in the top yet) with 12-bit scores and 15 keypoints per cell."""
     size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
     blocks = {
         "fastnms_window": size,
@@ -156,7 +157,11 @@ def block_entries(width: int, height: int) -> list[Entry]:
             "DEPTH": width // 8 + 16,
         },
     }
-    return [Entry(f"{e}-{width}", e, "-", "-", g) for e, g in blocks.items()]
+    rows = [Entry(f"{e}-{width}", e, "-", "-", g) for e, g in blocks.items()]
+    # The keypoint budget (not in the top yet) at its largest: 3840 wide, 12-bit
+    # scores, 15 per cell (its memory is sized for cells of 16).
+    budget = {"MAX_WIDTH": 3840, "MAX_HEIGHT": 2160, "SCORE_BITS": 12, "MAX_PER_CELL": 15}
+    return rows + [Entry("fastnms_cell_budget-3840", "fastnms_cell_budget", "-", "-", budget)]
 
 
 def _key_dir(root: Path, entity: str, generics: dict[str, object]) -> Path:

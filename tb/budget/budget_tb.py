@@ -1,0 +1,180 @@
+"""cocotb testbench of fastnms_cell_budget on its own: record streams in raster order
+(any density up to a record every clock, scores with many ties or the full range) against
+the golden model's budget (fastnms.golden.budget.cell_budget), in the block's documented
+output order: cell rows in order, cells left to right, best first within a cell; every
+record in input order with K = 0."""
+
+from __future__ import annotations
+
+import ast
+import os
+import random
+
+import cocotb
+import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, RisingEdge
+from fastnms.golden.budget import cell_budget
+
+from tb.stream import StreamSink, StreamSource, value
+from tb.video import PERIOD_NS, record_mismatch
+
+GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
+MAX_WIDTH = GENERICS["MAX_WIDTH"]
+MAX_HEIGHT = GENERICS["MAX_HEIGHT"]
+SCORE_BITS = GENERICS["SCORE_BITS"]
+MAX_PER_CELL = GENERICS.get("MAX_PER_CELL", 15)
+IDLE = float(os.environ.get("TB_IDLE", "0"))
+STALL = float(os.environ.get("TB_STALL", "0"))
+CLEAR_CLOCKS = (MAX_WIDTH + 15) // 16
+
+
+def expected(records: np.ndarray, cell_log: int, per_cell: int) -> list[tuple[int, int, int]]:
+    """The frame's output records in the block's order."""
+    k = min(per_cell, MAX_PER_CELL)
+    if k == 0:
+        return [tuple(r) for r in records.tolist()]
+    cell = 16 << min(cell_log, 4)
+    kept = cell_budget(records, cell, k)
+    x, y, s = kept[:, 0], kept[:, 1], kept[:, 2]
+    order = np.lexsort((x, y, -s, x // cell, y // cell))
+    return [tuple(r) for r in kept[order].tolist()]
+
+
+class TB:
+    def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
+        self.dut = dut
+        self.rng = random.Random(cocotb.RANDOM_SEED)
+        self.np_rng = np.random.default_rng(cocotb.RANDOM_SEED)
+        dut._log.info(
+            "seed=%d generics %s idle %.2f stall %.2f", cocotb.RANDOM_SEED, GENERICS, idle, stall
+        )
+        cocotb.start_soon(Clock(dut.clk, PERIOD_NS, unit="ns").start())
+        self.source = StreamSource(dut, dut.clk, "in", self.rng, idle)
+        self.sink = StreamSink(dut, dut.clk, "out", ["x", "y", "score", "eof"], self.rng, stall)
+        self.held = 0  # clocks with in_valid high and in_ready low
+        self.running = False
+
+    async def reset(self) -> None:
+        self.dut.rst.value = 1
+        self.dut.in_valid.value = 0
+        await ClockCycles(self.dut.clk, 3)
+        self.dut.rst.value = 0
+        await RisingEdge(self.dut.clk)
+        if not self.running:
+            self.running = True
+            cocotb.start_soon(self.sink.run())
+            cocotb.start_soon(self._count_holds())
+
+    async def _count_holds(self) -> None:
+        while True:
+            await RisingEdge(self.dut.clk)
+            if value(self.dut.in_valid) and not value(self.dut.in_ready):
+                self.held += 1
+
+    def random_records(self, width: int, height: int, density: float, top: int) -> np.ndarray:
+        rng = self.np_rng
+        flags = rng.random((height, width)) < density
+        ys, xs = np.nonzero(flags)
+        scores = rng.integers(0, top + 1, len(xs))
+        return np.stack([xs, ys, scores], axis=1).astype(np.int64)
+
+    def random_frame(self) -> tuple[np.ndarray, int, int, int, int]:
+        rng = self.np_rng
+        width = int(rng.integers(7, MAX_WIDTH + 1))
+        height = int(rng.integers(7, MAX_HEIGHT + 1))
+        density = float(rng.choice([0.0, 0.02, 0.2, 0.6, 1.0]))
+        top = int(rng.choice([1, 3, 2**SCORE_BITS - 1]))
+        cell_log = int(rng.choice([0, 0, 1, 2, 4, 7]))
+        per_cell = int(rng.choice([0, 1, 2, 5, 15]))
+        return self.random_records(width, height, density, top), width, height, cell_log, per_cell
+
+    @staticmethod
+    def beats(frame) -> list[dict[str, int]]:
+        records, width, height, cell_log, per_cell = frame
+        cfg = {"cell_log": cell_log, "per_cell": per_cell}
+        out = [{"x": x, "y": y, "score": s, "eof": 0, **cfg} for x, y, s in records.tolist()]
+        return out + [{"x": width - 1, "y": height - 1, "score": 0, "eof": 1, **cfg}]
+
+    async def run_frames(self, frames: list, label: str) -> None:
+        """Send the frames back to back; compare every frame's output with the golden."""
+        start = len(self.sink.beats)
+        beats = [b for f in frames for b in self.beats(f)]
+        await self.source.send(beats)
+        want_eofs = len(frames)
+        for _ in range(200 * len(beats) + 2000):
+            got_eofs = sum(b["eof"] for b in self.sink.beats[start:])
+            if got_eofs >= want_eofs:
+                break
+            await RisingEdge(self.dut.clk)
+        out = self.sink.beats[start:]
+        frames_out: list[list[tuple[int, int, int]]] = [[]]
+        ends = []
+        for b in out:
+            if b["eof"]:
+                ends.append((b["x"], b["y"]))
+                frames_out.append([])
+            else:
+                frames_out[-1].append((b["x"], b["y"], b["score"]))
+        assert len(ends) == want_eofs, f"{label}: {len(ends)} of {want_eofs} frames ended"
+        for i, f in enumerate(frames):
+            records, width, height, cell_log, per_cell = f
+            want = expected(records, cell_log, per_cell)
+            context = f"{label} frame {i} ({width}x{height}, cell_log {cell_log}, K {per_cell})"
+            assert frames_out[i] == want, record_mismatch(frames_out[i], want, context)
+            assert ends[i] == (width - 1, height - 1), context
+
+
+@cocotb.test()
+async def random_frames(dut):
+    """Frames of every size, density, tie pattern and configuration, back to back."""
+    tb = TB(dut)
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    for group in range(6):
+        await tb.run_frames([tb.random_frame() for _ in range(5)], f"group {group}")
+
+
+@cocotb.test()
+async def every_configuration(dut):
+    """Each CELL (16 .. 256, and a value above) with K 1, MAX_PER_CELL and above it, on a
+    dense frame with two scores (most records tie)."""
+    tb = TB(dut)
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    frames = []
+    for cell_log in (0, 1, 2, 3, 4, 5):
+        for per_cell in (1, MAX_PER_CELL, 15):
+            records = tb.random_records(MAX_WIDTH, MAX_HEIGHT, 0.7, 1)
+            frames.append((records, MAX_WIDTH, MAX_HEIGHT, cell_log, per_cell))
+    await tb.run_frames(frames, "configurations")
+
+
+@cocotb.test()
+async def never_holds_a_dense_stream(dut):
+    """A record every clock at full width over many cell rows (K 15, CELL 16, no output
+    back-pressure): after the reset's clear the input never waits."""
+    tb = TB(dut, idle=0.0, stall=0.0)
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    held = tb.held
+    records = tb.random_records(MAX_WIDTH, MAX_HEIGHT, 1.0, 2**SCORE_BITS - 1)
+    await tb.run_frames([(records, MAX_WIDTH, MAX_HEIGHT, 0, 15)], "dense")
+    assert tb.held == held, f"the input waited {tb.held - held} clocks"
+
+
+@cocotb.test()
+async def reset_mid_frame(dut):
+    """A reset in the middle of a frame (and of a drain): the next frames are exact."""
+    tb = TB(dut)
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    records = tb.random_records(MAX_WIDTH, MAX_HEIGHT, 0.5, 3)
+    beats = TB.beats((records, MAX_WIDTH, MAX_HEIGHT, 0, 3))
+    sending = cocotb.start_soon(tb.source.send(beats[: len(beats) // 2]))
+    await ClockCycles(dut.clk, len(beats) // 3)
+    sending.cancel()
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    tb.sink.beats.clear()
+    await tb.run_frames([tb.random_frame() for _ in range(3)], "after reset")
