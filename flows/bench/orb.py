@@ -11,11 +11,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import cv2
 import numpy as np
 from fastnms.golden import orb
 from fastnms.golden.image import load_grey
 from fastnms.testing import images as testimages
+from fastnms.testing import opencv_orb
 
 from flows.bench import software
 
@@ -24,32 +24,10 @@ class OrbMismatch(Exception):
     """The golden's keypoints, angles or float-blur descriptors differ from cv2.ORB's."""
 
 
-def cv2_orb(threshold: int):
-    return cv2.ORB_create(
-        nfeatures=10**6,
-        nlevels=1,
-        edgeThreshold=orb.EDGE,
-        patchSize=orb.PATCH_SIZE,
-        scoreType=cv2.ORB_FAST_SCORE,
-        fastThreshold=threshold,
-    )
-
-
-def cv2_features(img: np.ndarray, threshold: int) -> orb.OrbFeatures:
-    """cv2.ORB's output as the golden's OrbFeatures, sorted by y then x."""
-    kps, des = cv2_orb(threshold).detectAndCompute(img, None)
-    records = np.array([(*k.pt, k.response) for k in kps], np.float64).reshape(-1, 3)
-    records = records.astype(np.int64)
-    angles = np.array([k.angle for k in kps], np.float32)
-    des = np.zeros((0, orb.DESCRIPTOR_BYTES), np.uint8) if des is None else des
-    order = np.lexsort((records[:, 0], records[:, 1]))
-    return orb.OrbFeatures(records[order], angles[order], des[order])
-
-
 def agreement(img: np.ndarray, threshold: int, name: str) -> dict:
     """One photograph: keypoint count, and the contract's descriptors against cv2.ORB's."""
     ours = orb.orb_features(img, threshold)
-    theirs = cv2_features(img, threshold)
+    theirs = opencv_orb.features(img, threshold)
     if not np.array_equal(ours.records, theirs.records):
         raise OrbMismatch(f"{name}: keypoints differ from cv2.ORB's")
     if not np.array_equal(ours.angles.view(np.uint32), theirs.angles.view(np.uint32)):
@@ -87,7 +65,7 @@ def times(frame: np.ndarray, threshold: int) -> list[dict]:
     rows = []
     ms, f = software.best_ms(lambda: orb.orb_features(frame, threshold))
     rows.append({"what": "golden ORB, opencv + 3x3", "ms": ms, "corners": len(f.records)})
-    det = cv2_orb(threshold)
+    det = opencv_orb.detector(threshold)
     ms, (kps, _) = software.best_ms(lambda: det.detectAndCompute(frame, None))
     rows.append({"what": "cv2.ORB, 1 level, FAST score", "ms": ms, "corners": len(kps)})
     return [{**r, "best_of": software.REPEATS} for r in rows]

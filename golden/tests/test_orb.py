@@ -17,35 +17,15 @@ import pytest
 from fastnms.golden import orb
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.testing import opencv_orb
 from fastnms.testing.images import bundled_images
 
 THRESHOLDS = (10, 20, 40)
 
 
 def cv2_orb(img: np.ndarray, threshold: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """cv2.ORB on one level with FAST scores: (x, y, response) int64, angles float32,
-    descriptors uint8, sorted by y then x; also checks the fields the golden fixes."""
-    det = cv2.ORB_create(
-        nfeatures=10**6,
-        nlevels=1,
-        edgeThreshold=orb.EDGE,
-        patchSize=orb.PATCH_SIZE,
-        scoreType=cv2.ORB_FAST_SCORE,
-        fastThreshold=threshold,
-    )
-    kps, des = det.detectAndCompute(img, None)
-    return _sorted(kps, des)
-
-
-def _sorted(kps, des) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    raw = np.array([(k.pt[0], k.pt[1], k.response) for k in kps], np.float64).reshape(-1, 3)
-    rec = raw.astype(np.int64)
-    assert np.array_equal(rec, raw), "OpenCV gave non-integer positions or responses"
-    assert all(k.size == orb.PATCH_SIZE and k.octave == 0 for k in kps)
-    angles = np.array([k.angle for k in kps], np.float32)
-    des = np.zeros((0, orb.DESCRIPTOR_BYTES), np.uint8) if des is None else des
-    order = np.lexsort((rec[:, 0], rec[:, 1]))
-    return rec[order], angles[order], des[order]
+    """cv2.ORB's (x, y, response) int64, angles float32, descriptors uint8, by y then x."""
+    return tuple(opencv_orb.features(img, threshold))
 
 
 def golden_with_float_blur(img: np.ndarray, threshold: int) -> orb.OrbFeatures:
