@@ -24,12 +24,13 @@
 -- (which also empties its words) while the next fills the other. Jobs (drain a
 -- bank, emit an end of frame) queue in order, four at most.
 --
--- The input waits only (a) while the memory is cleared after reset
+-- The input waits (a) while the memory is cleared after reset
 -- (ceil(MAX_WIDTH / 16) clocks); (b) when a record opens a cell row while the
--- other bank still drains, or the job queue is full: the output held back, or
--- a frame starting before the previous frame's last two cell rows left (3
--- clocks per cell up to the last cell written, plus one per record); (c) with
--- K = 0, while the previous frame's jobs are not done.
+-- other bank still drains (a drain takes 3 clocks per cell up to the last cell
+-- written plus one per record, and starts at the first record of the next
+-- cell row: the output held back, sparse rows, or frames back to back), or the
+-- job queue is full; (c) with K = 0, while the previous frame's jobs are not
+-- done.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
