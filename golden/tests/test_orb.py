@@ -61,7 +61,9 @@ def _grey(path: Path) -> np.ndarray:
     return load_grey(path)
 
 
-@pytest.mark.parametrize("threshold", THRESHOLDS)
+@pytest.mark.parametrize(
+    "threshold", [pytest.param(t, marks=pytest.mark.slow) if t != 20 else t for t in THRESHOLDS]
+)
 def test_shared_photograph_equals_cv2_orb(shared_image: Path, threshold: int, cv_optimized):
     n = assert_equals_cv2_orb(_grey(shared_image), threshold, shared_image.name)
     assert n > 0, f"{shared_image.name}: no keypoint, nothing was compared"
