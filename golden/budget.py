@@ -49,3 +49,15 @@ def cell_budget(records: np.ndarray, cell: int, per_cell: int) -> np.ndarray:
         rank = np.arange(len(order)) - np.searchsorted(grouped, grouped, side="left")
         records = records[order[rank < per_cell]]
     return records[np.lexsort((records[:, 0], records[:, 1]))]
+
+
+def hardware_order(records: np.ndarray, cell: int, per_cell: int) -> np.ndarray:
+    """The budget's records in the order fastnms_cell_budget emits them: cell rows top to
+    bottom, cells left to right, best first within a cell (ties in raster order); with
+    per_cell = 0 the input order (raster order for the 3x3 NMS and "none")."""
+    records = np.asarray(records, dtype=np.int64).reshape(-1, 3)
+    if per_cell == 0:
+        return records
+    kept = cell_budget(records, cell, per_cell)
+    x, y, score = kept[:, 0], kept[:, 1], kept[:, 2]
+    return kept[np.lexsort((x, y, -score, x // cell, y // cell))]

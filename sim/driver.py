@@ -131,6 +131,8 @@ class AxiTop:
         self.last_pixels: list[int] = []
         self.last_records: list[int] = []
         self.input_stalls = 0
+        self.sof_clocks: list[int] = []  # clocks of the start-of-frame pixels' handshakes
+        self.b_clocks: list[int] = []  # clocks of the AXI4-Lite write responses' handshakes
         self.score_without_video = 0  # clocks with m_axis_score_tvalid high, SCORE_VIDEO off
 
     @classmethod
@@ -168,6 +170,8 @@ class AxiTop:
                     if self.first_pixel is None:
                         self.first_pixel = self.cycle
                     self.pixels_in += 1
+                    if dut.s_axis_video_tuser.value == 1:
+                        self.sof_clocks.append(self.cycle)
                     if self.frame_pixels and self.pixels_in % self.frame_pixels == 0:
                         self.last_pixels.append(self.cycle)
                 else:
@@ -178,6 +182,8 @@ class AxiTop:
                 and dut.m_axis_corners_tlast.value == 1
             ):
                 self.last_records.append(self.cycle)
+            if dut.s_axi_ctrl_bvalid.value == 1 and dut.s_axi_ctrl_bready.value == 1:
+                self.b_clocks.append(self.cycle)
             if not self.score_video and dut.m_axis_score_tvalid.value != 0:
                 self.score_without_video += 1
 
@@ -203,10 +209,18 @@ class AxiTop:
         assert resp.resp == AxiResp.OKAY, f"read 0x{offset:02x}: {resp.resp}"
         return int.from_bytes(resp.data, "little")
 
-    async def configure(self, width: int, height: int, threshold: int) -> None:
+    async def configure(
+        self, width: int, height: int, threshold: int, budget: tuple[int, int] | None = None
+    ) -> None:
+        """WIDTH, HEIGHT, THRESHOLD and, when given, BUDGET = (cell, per_cell)."""
         await self.write(regs.WIDTH, width)
         await self.write(regs.HEIGHT, height)
         await self.write(regs.THRESHOLD, threshold)
+        if budget is not None:
+            cell, per_cell = budget
+            await self.write(
+                regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
+            )
 
     async def soft_reset(self) -> None:
         """CMD.SOFT_RESET with its KEY (0x5A in bits 31:24)."""
@@ -232,18 +246,27 @@ class AxiTop:
             await self.source.send(line)
         return first
 
-    async def send_frames(self, frames: Sequence[tuple[np.ndarray, int]]) -> None:
-        """Send frames back to back; the size and threshold of frame i+1 are
-        written over AXI-Lite once frame i's first line has gone in (so they
-        take effect at frame i+1's start of frame)."""
-        img, t = frames[0]
-        await self.configure(img.shape[1], img.shape[0], t)
+    async def send_frames(
+        self,
+        frames: Sequence[tuple[np.ndarray, int]],
+        budgets: Sequence[tuple[int, int]] | None = None,
+    ) -> None:
+        """Send frames back to back; the size and threshold of frame i+1 (and its
+        BUDGET (cell, per_cell) when `budgets` is given) are written over AXI-Lite
+        once frame i's first line has gone in (so they take effect at frame i+1's
+        start of frame)."""
+
+        async def configure(i: int) -> None:
+            img, t = frames[i]
+            budget = budgets[i] if budgets is not None else None
+            await self.configure(img.shape[1], img.shape[0], t, budget)
+
+        await configure(0)
         for i, (img, _) in enumerate(frames):
             first = await self.send_lines(video_lines(img, self.ppc))
             if i + 1 < len(frames):
                 await first.wait()
-                nxt, t_next = frames[i + 1]
-                await self.configure(nxt.shape[1], nxt.shape[0], t_next)
+                await configure(i + 1)
 
     async def receive(self, count: int, budget: int) -> list[AxiStreamFrame]:
         """The next `count` corner frames; fails after `budget` clocks."""

@@ -34,7 +34,7 @@ class Register(NamedTuple):
 
 ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 3, 0)
+MAP_VERSION = (0, 4, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,7 +44,7 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 3)
+VERSION_MINOR = Field(8, 8, "ro", 4)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
 # CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
@@ -63,15 +63,18 @@ STATUS_SOF_MISSING = Field(4, 1, "w1c", 0)
 STATUS_SOF_EARLY = Field(5, 1, "w1c", 0)
 STATUS_OVERFLOW = Field(6, 1, "w1c", 0)
 
-# THRESHOLD: FAST threshold t, from the next start of frame.
+# THRESHOLD: FAST threshold t, for the frames whose first pixel is accepted after the write's B
+# response.
 THRESHOLD = 0x10
 THRESHOLD_VALUE = Field(0, 8, "rw", 0x14)
 
-# WIDTH: Frame width in pixels, from the next start of frame.
+# WIDTH: Frame width in pixels, for the frames whose first pixel is accepted after the write's B
+# response.
 WIDTH = 0x14
 WIDTH_VALUE = Field(0, 16, "rw", "MAX_WIDTH")
 
-# HEIGHT: Frame height in lines, from the next start of frame.
+# HEIGHT: Frame height in lines, for the frames whose first pixel is accepted after the write's
+# B response.
 HEIGHT = 0x18
 HEIGHT_VALUE = Field(0, 16, "rw", "MAX_HEIGHT")
 
@@ -101,6 +104,7 @@ MAX_SIZE_HEIGHT = Field(16, 16, "ro", "MAX_HEIGHT")
 BUILD = 0x2C
 BUILD_FIFO_DEPTH = Field(0, 16, "ro", "CORNER_FIFO_DEPTH")
 BUILD_SCORE_VIDEO = Field(16, 1, "ro", "SCORE_VIDEO")
+BUILD_MAX_PER_CELL = Field(20, 4, "ro", "MAX_PER_CELL")
 
 # CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits 31:24,
 # strobed), so a read-modify-write or a stray write cannot trigger one.
@@ -118,6 +122,14 @@ DROPPED_VALUE = Field(0, 32, "ro", 0)
 # offered and refused), since reset (wraps).
 INPUT_STALLS = 0x38
 INPUT_STALLS_VALUE = Field(0, 32, "ro", 0)
+
+# BUDGET: Keypoint budget per grid cell (docs/fastnms_cell_budget.md): at most PER_CELL records
+# per CELL x CELL cell, the best scores, a tie to the first in raster order; for the frames
+# whose first pixel is accepted after the write's B response. Reads back the values in use after
+# clamping.
+BUDGET = 0x3C
+BUDGET_PER_CELL = Field(0, 4, "rw", 0)
+BUDGET_CELL = Field(16, 9, "rw", 0x10)
 
 # The corner record: tdata of m_axis_corners, 64 bits.
 REC_X = Field(0, 16, "ro", 0)
@@ -165,10 +177,18 @@ REGISTERS: dict[str, Register] = {
     "CORNER_COUNT": Register(CORNER_COUNT, {"VALUE": CORNER_COUNT_VALUE}),
     "FRAME_COUNT": Register(FRAME_COUNT, {"VALUE": FRAME_COUNT_VALUE}),
     "MAX_SIZE": Register(MAX_SIZE, {"WIDTH": MAX_SIZE_WIDTH, "HEIGHT": MAX_SIZE_HEIGHT}),
-    "BUILD": Register(BUILD, {"FIFO_DEPTH": BUILD_FIFO_DEPTH, "SCORE_VIDEO": BUILD_SCORE_VIDEO}),
+    "BUILD": Register(
+        BUILD,
+        {
+            "FIFO_DEPTH": BUILD_FIFO_DEPTH,
+            "SCORE_VIDEO": BUILD_SCORE_VIDEO,
+            "MAX_PER_CELL": BUILD_MAX_PER_CELL,
+        },
+    ),
     "CMD": Register(CMD, {"SOFT_RESET": CMD_SOFT_RESET, "KEY": CMD_KEY}),
     "DROPPED": Register(DROPPED, {"VALUE": DROPPED_VALUE}),
     "INPUT_STALLS": Register(INPUT_STALLS, {"VALUE": INPUT_STALLS_VALUE}),
+    "BUDGET": Register(BUDGET, {"PER_CELL": BUDGET_PER_CELL, "CELL": BUDGET_CELL}),
 }
 
 

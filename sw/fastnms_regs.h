@@ -8,7 +8,7 @@
 #ifndef FASTNMS_REGS_H
 #define FASTNMS_REGS_H
 
-#define FASTNMS_VERSION_STRING "0.3.0"
+#define FASTNMS_VERSION_STRING "0.4.0"
 
 /* ID: Identification: the constant 0x46415354 ("FAST" in ASCII). */
 #define FASTNMS_ID_OFFSET      0x00u
@@ -23,7 +23,7 @@
 #define FASTNMS_VERSION_PATCH_RESET 0x0u
 #define FASTNMS_VERSION_MINOR_SHIFT 8u
 #define FASTNMS_VERSION_MINOR_MASK  0x0000FF00u
-#define FASTNMS_VERSION_MINOR_RESET 0x3u
+#define FASTNMS_VERSION_MINOR_RESET 0x4u
 #define FASTNMS_VERSION_MAJOR_SHIFT 16u
 #define FASTNMS_VERSION_MAJOR_MASK  0x00FF0000u
 #define FASTNMS_VERSION_MAJOR_RESET 0x0u
@@ -64,18 +64,21 @@
 #define FASTNMS_STATUS_OVERFLOW_MASK     0x00000040u
 #define FASTNMS_STATUS_OVERFLOW_RESET    0x0u
 
-/* THRESHOLD: FAST threshold t, from the next start of frame. */
+/* THRESHOLD: FAST threshold t, for the frames whose first pixel is accepted after the */
+/* write's B response. */
 #define FASTNMS_THRESHOLD_OFFSET      0x10u
 #define FASTNMS_THRESHOLD_VALUE_SHIFT 0u
 #define FASTNMS_THRESHOLD_VALUE_MASK  0x000000FFu
 #define FASTNMS_THRESHOLD_VALUE_RESET 0x14u
 
-/* WIDTH: Frame width in pixels, from the next start of frame. */
+/* WIDTH: Frame width in pixels, for the frames whose first pixel is accepted after the */
+/* write's B response. */
 #define FASTNMS_WIDTH_OFFSET      0x14u
 #define FASTNMS_WIDTH_VALUE_SHIFT 0u
 #define FASTNMS_WIDTH_VALUE_MASK  0x0000FFFFu
 
-/* HEIGHT: Frame height in lines, from the next start of frame. */
+/* HEIGHT: Frame height in lines, for the frames whose first pixel is accepted after the */
+/* write's B response. */
 #define FASTNMS_HEIGHT_OFFSET      0x18u
 #define FASTNMS_HEIGHT_VALUE_SHIFT 0u
 #define FASTNMS_HEIGHT_VALUE_MASK  0x0000FFFFu
@@ -116,11 +119,13 @@
 #define FASTNMS_MAX_SIZE_HEIGHT_MASK  0xFFFF0000u
 
 /* BUILD: Other build options. */
-#define FASTNMS_BUILD_OFFSET            0x2Cu
-#define FASTNMS_BUILD_FIFO_DEPTH_SHIFT  0u
-#define FASTNMS_BUILD_FIFO_DEPTH_MASK   0x0000FFFFu
-#define FASTNMS_BUILD_SCORE_VIDEO_SHIFT 16u
-#define FASTNMS_BUILD_SCORE_VIDEO_MASK  0x00010000u
+#define FASTNMS_BUILD_OFFSET             0x2Cu
+#define FASTNMS_BUILD_FIFO_DEPTH_SHIFT   0u
+#define FASTNMS_BUILD_FIFO_DEPTH_MASK    0x0000FFFFu
+#define FASTNMS_BUILD_SCORE_VIDEO_SHIFT  16u
+#define FASTNMS_BUILD_SCORE_VIDEO_MASK   0x00010000u
+#define FASTNMS_BUILD_MAX_PER_CELL_SHIFT 20u
+#define FASTNMS_BUILD_MAX_PER_CELL_MASK  0x00F00000u
 
 /* CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits */
 /* 31:24, strobed), so a read-modify-write or a stray write cannot trigger one. */
@@ -146,6 +151,18 @@
 #define FASTNMS_INPUT_STALLS_VALUE_SHIFT 0u
 #define FASTNMS_INPUT_STALLS_VALUE_MASK  0xFFFFFFFFu
 #define FASTNMS_INPUT_STALLS_VALUE_RESET 0x0u
+
+/* BUDGET: Keypoint budget per grid cell (docs/fastnms_cell_budget.md): at most PER_CELL */
+/* records per CELL x CELL cell, the best scores, a tie to the first in raster order; for the */
+/* frames whose first pixel is accepted after the write's B response. Reads back the values */
+/* in use after clamping. */
+#define FASTNMS_BUDGET_OFFSET         0x3Cu
+#define FASTNMS_BUDGET_PER_CELL_SHIFT 0u
+#define FASTNMS_BUDGET_PER_CELL_MASK  0x0000000Fu
+#define FASTNMS_BUDGET_PER_CELL_RESET 0x0u
+#define FASTNMS_BUDGET_CELL_SHIFT     16u
+#define FASTNMS_BUDGET_CELL_MASK      0x01FF0000u
+#define FASTNMS_BUDGET_CELL_RESET     0x10u
 
 /* The corner record: tdata of m_axis_corners, 64 bits. */
 #define FASTNMS_REC_X_SHIFT        0u

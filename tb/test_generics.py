@@ -30,16 +30,25 @@ ILLEGAL = {
     "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),
     "fastnms_corner_pack": ({"X_BITS": 30, "Y_BITS": 30}, "X_BITS + Y_BITS + SCORE_BITS + 2"),
     "fastnms_video_check": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
-    "fastnms_video_gate": ({"SETTLE": 2}, "SETTLE must be at least 3"),
     "fastnms_axi": ({"NMS": "5x5"}, "NMS must be"),
 }
 # Entities whose generics have no illegal value beyond their VHDL subtype
 # (GHDL refuses those at elaboration already).
-NOTHING_TO_CHECK = {"fastnms_skid_buffer": "WIDTH: any positive width works"}
+NOTHING_TO_CHECK = {
+    "fastnms_skid_buffer": "WIDTH: any positive width works",
+    "fastnms_video_gate": "DATA_WIDTH: any positive width works",
+}
 # More illegal values of entities with several checks: (entity, generics, message).
 MORE = [
     ("fastnms_ram_sdp", {"READ_LATENCY": 3}, "READ_LATENCY must be 1 or 2"),
     ("fastnms_core", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
+    (
+        "fastnms_core",
+        {"NMS": "region4", "MAX_PER_CELL": 4},
+        "the budget (MAX_PER_CELL > 0) takes records in raster order",
+    ),
+    ("fastnms_core", {"MAX_PER_CELL": 16}, "MAX_PER_CELL must be 0 .. 15"),
+    ("fastnms_axi_regs", {"MAX_PER_CELL": 16}, "MAX_PER_CELL must be 0 .. 15"),
     ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
     ("fastnms_nms_region", {"CONNECTIVITY": 6}, "CONNECTIVITY must be 4 or 8"),

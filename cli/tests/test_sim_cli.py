@@ -214,7 +214,7 @@ def test_build_size_follows_the_largest_frame():
 @pytest.mark.slow
 def test_sim_4k_at_four_pixels_per_clock(tmp_path: Path):
     """A 3840x2160 photograph through `fastnms sim --ppc 4` (the top built for 3840x2160,
-    the build `make bench` uses): the golden model's corners, W x H / 4 + 4 clocks apart."""
+    the build `make bench` uses): the golden model's corners."""
     path, out_json, out_csv = tmp_path / "uhd.png", tmp_path / "c.json", tmp_path / "c.csv"
     img = testimages.cover(load_grey(testimages.real_images()[0]), 3840, 2160)
     cv2.imwrite(str(path), img)

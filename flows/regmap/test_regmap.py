@@ -38,6 +38,7 @@ def test_reset_values_follow_the_generics():
         "CORNER_FIFO_DEPTH": 64,
         "SCORE_VIDEO": True,
         "PPC": 1,
+        "MAX_PER_CELL": 0,
     }
     assert regs.reset_value("ID", generics) == 0x46415354
     assert regs.reset_value("CTRL", generics) == 1
@@ -51,6 +52,9 @@ def test_reset_values_follow_the_generics():
     assert regs.reset_value("BUILD", generics) == 64
     generics.update(PPC=4)
     assert regs.reset_value("MODE", generics) == 0x410  # PPC 4
+    generics.update(MAX_PER_CELL=15)
+    assert regs.reset_value("BUILD", generics) == 15 << 20 | 64
+    assert regs.reset_value("BUDGET", generics) == 16 << 16  # CELL 16, PER_CELL 0
 
 
 def test_docs_table_lists_every_field():

@@ -860,10 +860,9 @@ def bench_section(bench: dict) -> str:
     out.append("")
     out.append(
         "Input clocks/pixel: clocks from the first to the last pixel taken, over the "
-        "pixels. Frame intervals: clocks between consecutive frames' last records; as the "
-        "registers are written for every frame, they include the 4 clocks for which the "
-        "video gate holds the first pixel of a frame after a configuration write "
-        "([fastnms_axi.md](fastnms_axi.md)). Latency: clocks from a frame's last pixel in (its "
+        "pixels. Frame intervals: clocks between consecutive frames' last records (the "
+        "registers are written for every frame; the top never holds the input for them, "
+        "[fastnms_axi.md](fastnms_axi.md)). Latency: clocks from a frame's last pixel in (its "
         "input handshake) to its last record out (the `tlast` handshake on "
         "`m_axis_corners`). vs golden: every frame's records against "
         "`fastnms.golden.model.detect` (a difference stops the bench). Simulated pixels/s: "

@@ -17,6 +17,15 @@
 -- region NMS, whose records leave as regions close), then one end-of-frame
 -- beat (out_eof = '1'), also for a frame without corners.
 --
+-- With MAX_PER_CELL > 0 (NMS "3x3" or "none"), fastnms_cell_budget follows
+-- the NMS: at most cfg_per_cell records (clamped to MAX_PER_CELL; 0: all) per
+-- cell of 2 ** (cfg_cell_log + 4) pixels, taken with the start-of-frame beat
+-- like the threshold; each cell row's records leave once it is complete,
+-- cells left to right, best first (docs/fastnms_cell_budget.md). The region
+-- NMS's records come in closing order, up to many rows late: no budget with
+-- it (asserted). MAX_PER_CELL = 0 builds no budget and ignores cfg_cell_log
+-- and cfg_per_cell.
+--
 -- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
 -- corner) is also presented on the tap_* ports, one beat per input beat with
 -- start-of-frame and end-of-line; the detector advances only when both the
@@ -38,7 +47,8 @@ entity fastnms_core is
     NMS          : string   := "3x3";
     READ_LATENCY : positive := 1;
     SCORE_TAP    : boolean  := false;
-    PPC          : positive := 1
+    PPC          : positive := 1;
+    MAX_PER_CELL : natural  := 0
   );
   port (
     clk           : in    std_logic;
@@ -46,6 +56,8 @@ entity fastnms_core is
     cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     cfg_threshold : in    unsigned(7 downto 0);
+    cfg_cell_log  : in    unsigned(2 downto 0) := (others => '0');
+    cfg_per_cell  : in    unsigned(3 downto 0) := (others => '0');
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
     in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
@@ -93,6 +105,16 @@ architecture rtl of fastnms_core is
   signal d_corner : std_logic_vector(PPC - 1 downto 0);
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
+  -- The budget's configuration, through the detector with the frame.
+  signal cfg_tag  : std_logic_vector(6 downto 0);
+  signal d_tag    : std_logic_vector(6 downto 0);
+  -- The NMS's output, before the budget.
+  signal s_valid : std_logic;
+  signal s_ready : std_logic;
+  signal s_x     : unsigned(out_x'range);
+  signal s_y     : unsigned(out_y'range);
+  signal s_score : unsigned(out_score'range);
+  signal s_eof   : std_logic;
   -- The fork between the NMS and the score tap.
   signal n_valid : std_logic;
   signal n_ready : std_logic;
@@ -116,9 +138,17 @@ begin
   assert PPC = 1 or PPC = 2 or PPC = 4
     report "fastnms_core: PPC must be 1, 2 or 4"
     severity failure;
+  assert MAX_PER_CELL = 0 or NMS = "3x3" or NMS = "none"
+    report "fastnms_core: the budget (MAX_PER_CELL > 0) takes records in raster order: NMS ""3x3"" or ""none"" only"
+    severity failure;
+  assert MAX_PER_CELL <= 15
+    report "fastnms_core: MAX_PER_CELL must be 0 .. 15"
+    severity failure;
   assert PPC = 1 or NMS = "3x3" or NMS = "none"
     report "fastnms_core: NMS """ & NMS & """ takes one pixel per clock: PPC must be 1 (""3x3"" and ""none"" take 2 or 4)"
     severity failure;
+
+  cfg_tag <= std_logic_vector(cfg_cell_log) & std_logic_vector(cfg_per_cell);
 
   detector : entity work.fastnms_fast_detector
     generic map (
@@ -126,7 +156,8 @@ begin
       MAX_HEIGHT   => MAX_HEIGHT,
       SCORE        => SCORE,
       READ_LATENCY => READ_LATENCY,
-      PPC          => PPC
+      PPC          => PPC,
+      TAG_BITS     => d_tag'length
     )
     port map (
       clk           => clk,
@@ -134,6 +165,7 @@ begin
       cfg_width     => cfg_width,
       cfg_height    => cfg_height,
       cfg_threshold => cfg_threshold,
+      cfg_tag       => cfg_tag,
       in_valid      => in_valid,
       in_ready      => in_ready,
       in_data       => in_data,
@@ -148,6 +180,7 @@ begin
       out_eof       => d_eof,
       out_width     => d_width,
       out_height    => d_height,
+      out_tag       => d_tag,
       err_line      => err_line,
       err_frame     => err_frame
     );
@@ -184,12 +217,12 @@ begin
         in_score   => d_score,
         in_sof     => d_sof,
         in_eol     => d_eol,
-        out_valid  => out_valid,
-        out_ready  => out_ready,
-        out_x      => out_x,
-        out_y      => out_y,
-        out_score  => out_score,
-        out_eof    => out_eof,
+        out_valid  => s_valid,
+        out_ready  => s_ready,
+        out_x      => s_x,
+        out_y      => s_y,
+        out_score  => s_score,
+        out_eof    => s_eof,
         err_line   => open,
         err_frame  => open
       );
@@ -216,12 +249,12 @@ begin
         in_sof    => d_sof,
         in_eol    => d_eol,
         in_eof    => d_eof,
-        out_valid => out_valid,
-        out_ready => out_ready,
-        out_x     => out_x,
-        out_y     => out_y,
-        out_score => out_score,
-        out_eof   => out_eof
+        out_valid => s_valid,
+        out_ready => s_ready,
+        out_x     => s_x,
+        out_y     => s_y,
+        out_score => s_score,
+        out_eof   => s_eof
       );
 
   end generate suppress_region;
@@ -244,14 +277,112 @@ begin
         in_score  => d_score,
         in_eol    => d_eol,
         in_eof    => d_eof,
-        out_valid => out_valid,
-        out_ready => out_ready,
-        out_x     => out_x,
-        out_y     => out_y,
-        out_score => out_score,
-        out_eof   => out_eof
+        out_valid => s_valid,
+        out_ready => s_ready,
+        out_x     => s_x,
+        out_y     => s_y,
+        out_score => s_score,
+        out_eof   => s_eof
       );
 
   end generate suppress_none;
+
+  -- ---- the budget ---------------------------------------------------------------
+
+  no_budget : if MAX_PER_CELL = 0 generate
+    out_valid <= s_valid;
+    s_ready   <= out_ready;
+    out_x     <= s_x;
+    out_y     <= s_y;
+    out_score <= s_score;
+    out_eof   <= s_eof;
+  end generate no_budget;
+
+  with_budget : if MAX_PER_CELL > 0 generate
+
+    -- The budget's configuration of each frame: taken by the detector with
+    -- the frame's first pixel (d_tag), queued at the frame's first score
+    -- beat, consumed at the frame's end-of-frame record. Every frame the
+    -- detector emits gives one end-of-frame record, so queue and frames stay
+    -- in step; at most two frames are between the detector's output and the
+    -- NMS's (asserted), the queue holds four.
+    signal q_valid : std_logic;
+    signal q_ready : std_logic;
+    signal q_push  : std_logic;
+    signal q_tag   : std_logic_vector(d_tag'range);
+    signal b_valid : std_logic;
+    signal b_ready : std_logic;
+
+  begin
+
+    q_push <= d_valid and d_ready and d_sof;
+
+    config_queue : entity work.fastnms_fifo
+      generic map (
+        DEPTH => 4,
+        WIDTH => d_tag'length,
+        STYLE => "distributed"
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => q_push,
+        in_ready  => q_ready,
+        in_room2  => open,
+        in_room3  => open,
+        in_spare  => open,
+        in_data   => d_tag,
+        out_valid => q_valid,
+        out_ready => s_valid and s_ready and s_eof,
+        out_data  => q_tag,
+        busy      => open
+      );
+
+    -- A frame's records wait for its configuration (never long: the NMS
+    -- takes several clocks from a frame's first score beat to its first
+    -- record).
+    b_valid <= s_valid and q_valid;
+    s_ready <= b_ready and q_valid;
+
+    budget : entity work.fastnms_cell_budget
+      generic map (
+        MAX_WIDTH    => MAX_WIDTH,
+        MAX_HEIGHT   => MAX_HEIGHT,
+        SCORE_BITS   => SCORE_BITS,
+        MAX_PER_CELL => MAX_PER_CELL
+      )
+      port map (
+        clk         => clk,
+        rst         => rst,
+        in_valid    => b_valid,
+        in_ready    => b_ready,
+        in_x        => s_x,
+        in_y        => s_y,
+        in_score    => s_score,
+        in_eof      => s_eof,
+        in_cell_log => unsigned(q_tag(6 downto 4)),
+        in_per_cell => unsigned(q_tag(3 downto 0)),
+        out_valid   => out_valid,
+        out_ready   => out_ready,
+        out_x       => out_x,
+        out_y       => out_y,
+        out_score   => out_score,
+        out_eof     => out_eof
+      );
+
+    -- pragma translate_off
+    queue_check : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        assert not (rst = '0' and q_push = '1' and q_ready = '0')
+          report "fastnms_core: the budget's configuration queue is full"
+          severity failure;
+      end if;
+
+    end process queue_check;
+    -- pragma translate_on
+
+  end generate with_budget;
 
 end architecture rtl;

@@ -7,8 +7,8 @@
 -- Output: one beat per input beat, in raster order, with out_sof on beat
 -- (0, 0), out_eol on the last beat of each line and out_eof on the frame's
 -- last beat; pixel i of a beat is bit i of out_corner and slice i of
--- out_score. out_width and out_height give the size of the frame whose
--- first beat (out_sof) is next to leave: they change at least 10 clocks
+-- out_score. out_width and out_height give the size (out_tag the cfg_tag)
+-- of the frame whose first beat (out_sof) is next to leave: they change at least 10 clocks
 -- before that beat, while the previous frame's last beats may still be
 -- leaving, and hold until the next frame's first beat is on its way. A block
 -- downstream that samples them with out_sof sees a value stable for the 10
@@ -22,7 +22,8 @@
 -- of PPC; see fastnms_window for the narrowest legal width) and
 -- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame beat and
 -- must be stable for the two clocks before it is accepted; cfg_threshold
--- (0..255) is sampled when the start-of-frame pixel is accepted. As in
+-- (0..255) and cfg_tag (any per-frame word for the blocks after the
+-- detector) are sampled when the start-of-frame pixel is accepted. As in
 -- AXI4-Stream, an offered beat stays (in_valid high, data stable) until it is
 -- taken. err_line and
 -- err_frame flag malformed input (see fastnms_window); the block never stalls
@@ -49,7 +50,8 @@ entity fastnms_fast_detector is
     MAX_HEIGHT   : positive := 4095;
     SCORE        : string   := "opencv";
     READ_LATENCY : positive := 1;
-    PPC          : positive := 1
+    PPC          : positive := 1;
+    TAG_BITS     : positive := 1
   );
   port (
     clk           : in    std_logic;
@@ -57,6 +59,7 @@ entity fastnms_fast_detector is
     cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     cfg_threshold : in    unsigned(7 downto 0);
+    cfg_tag       : in    std_logic_vector(TAG_BITS - 1 downto 0) := (others => '0');
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
     in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
@@ -71,6 +74,7 @@ entity fastnms_fast_detector is
     out_eof       : out   std_logic;
     out_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     out_height    : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_tag       : out   std_logic_vector(TAG_BITS - 1 downto 0);
     err_line      : out   std_logic;
     err_frame     : out   std_logic
   );
@@ -118,6 +122,7 @@ architecture rtl of fastnms_fast_detector is
   signal threshold_cur : byte_t;
   signal width_in      : unsigned(cfg_width'range);
   signal height_in     : unsigned(cfg_height'range);
+  signal tag_in        : std_logic_vector(cfg_tag'range);
 
   signal corner  : lanes_t;
   signal corners : corners_t;
@@ -190,11 +195,13 @@ begin
         threshold_in <= cfg_threshold;
         width_in     <= cfg_width;
         height_in    <= cfg_height;
+        tag_in       <= cfg_tag;
       end if;
       if advance = '1' and w_valid = '1' and w_sof = '1' then
         threshold_cur <= threshold_in;
         out_width     <= width_in;
         out_height    <= height_in;
+        out_tag       <= tag_in;
       end if;
     end if;
 

@@ -1,11 +1,11 @@
 -- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
 -- out, optional per-pixel score video out, AXI4-Lite control. See docs/fastnms_axi.md.
 --
---   s_axis_video ─► skid ─► gate ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
---                            │  ▲        │  └ tap ─► skid ─► (sat) ─► m_axis_score
---                   check ◄──┘  │        │
---                     │   s_axi_ctrl ─► regs ─► interrupt
---                     └────────────────►
+--   s_axis_video ─► skid ─► skid ─► gate ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
+--                                    │  ▲        │  └ tap ─► skid ─► (sat) ─► m_axis_score
+--                           check ◄──┘  │        │
+--                             │   s_axi_ctrl ─► regs ─► interrupt
+--                             └────────────────►
 --
 -- The entity declaration is VHDL-93 (std_logic ports, plain generics) for
 -- Vivado's IP packager; the interface attributes sit in the entity's
@@ -37,7 +37,8 @@ entity fastnms_axi is
     NMS               : string   := "3x3";
     SCORE_VIDEO       : boolean  := false;
     CORNER_FIFO_DEPTH : positive := 512;
-    PPC               : positive := 1
+    PPC               : positive := 1;
+    MAX_PER_CELL      : natural  := 0
   );
   port (
     aclk    : in    std_logic;
@@ -223,11 +224,12 @@ architecture rtl of fastnms_axi is
   -- Configuration.
   signal enable        : std_logic;
   signal live          : std_logic;
-  signal cfg_pending   : std_logic;
   signal cfg_apply     : std_logic;
   signal cfg_width     : unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
   signal cfg_height    : unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
   signal cfg_threshold : unsigned(7 downto 0);
+  signal cfg_cell_log  : unsigned(2 downto 0);
+  signal cfg_per_cell  : unsigned(3 downto 0);
 
   -- Video in: the input skid buffer, then the gate.
   signal v_in       : std_logic_vector(PPC * 8 + 1 downto 0);
@@ -237,6 +239,9 @@ architecture rtl of fastnms_axi is
   signal v_tready   : std_logic;
   signal v_tvalid   : std_logic;
   signal v_ready    : std_logic;
+  signal g_valid    : std_logic;
+  signal g_ready    : std_logic;
+  signal g_out      : std_logic_vector(PPC * 8 + 1 downto 0);
   signal c_valid    : std_logic; -- into the core
   signal c_ready    : std_logic;
   signal c_data     : std_logic_vector(PPC * 8 - 1 downto 0);
@@ -413,7 +418,8 @@ begin
       NMS               => NMS,
       SCORE_VIDEO       => SCORE_VIDEO,
       CORNER_FIFO_DEPTH => CORNER_FIFO_DEPTH,
-      PPC               => PPC
+      PPC               => PPC,
+      MAX_PER_CELL      => MAX_PER_CELL
     )
     port map (
       clk             => aclk,
@@ -431,11 +437,12 @@ begin
       live            => live,
       soft_reset      => soft_pulse,
       soft_busy       => soft_busy,
-      cfg_pending     => cfg_pending,
       cfg_apply       => cfg_apply,
       cfg_width       => cfg_width,
       cfg_height      => cfg_height,
       cfg_threshold   => cfg_threshold,
+      cfg_cell_log    => cfg_cell_log,
+      cfg_per_cell    => cfg_per_cell,
       busy            => busy,
       evt_eol_early   => err_eol_early,
       evt_eol_late    => err_eol_late,
@@ -458,6 +465,12 @@ begin
   v_tvalid            <= s_axis_video_tvalid and ports_on;
   v_tready            <= v_in_ready and ports_on;
   s_axis_video_tready <= v_tready;
+  -- A frame's configuration: the registers' values when its first pixel is
+  -- accepted here. That pixel reaches the core three clocks later at the
+  -- earliest (three skid buffers), as the core asks (its window generator
+  -- derives the frame's limits from the configuration in two register
+  -- steps); the frame before has taken its own values with its first pixel.
+  cfg_apply <= v_tvalid and v_tready and s_axis_video_tuser;
 
   -- Ping-pong: the gate decides from the buffered beat's start-of-frame bit,
   -- and its ready must not enable the wide data registers (with 4 pixels per
@@ -478,6 +491,23 @@ begin
       out_data  => v_out
     );
 
+  -- The clock the configuration needs (above), without holding the input.
+  config_delay : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH     => PPC * 8 + 2,
+      PING_PONG => true
+    )
+    port map (
+      clk       => aclk,
+      rst       => rst,
+      in_valid  => v_valid,
+      in_ready  => v_ready,
+      in_data   => v_out,
+      out_valid => g_valid,
+      out_ready => g_ready,
+      out_data  => g_out
+    );
+
   gate : entity work.fastnms_video_gate
     generic map (
       DATA_WIDTH => PPC * 8
@@ -487,13 +517,11 @@ begin
       rst         => rst,
       soft        => soft_busy,
       enable      => enable,
-      cfg_pending => cfg_pending,
-      cfg_apply   => cfg_apply,
-      in_valid    => v_valid,
-      in_ready    => v_ready,
-      in_data     => v_out(PPC * 8 - 1 downto 0),
-      in_sof      => v_out(PPC * 8 + 1),
-      in_eol      => v_out(PPC * 8),
+      in_valid    => g_valid,
+      in_ready    => g_ready,
+      in_data     => g_out(PPC * 8 - 1 downto 0),
+      in_sof      => g_out(PPC * 8 + 1),
+      in_eol      => g_out(PPC * 8),
       out_valid   => c_valid,
       out_ready   => c_ready,
       out_data    => c_data,
@@ -532,7 +560,8 @@ begin
       NMS          => NMS,
       READ_LATENCY => 1,
       SCORE_TAP    => SCORE_VIDEO,
-      PPC          => PPC
+      PPC          => PPC,
+      MAX_PER_CELL => MAX_PER_CELL
     )
     port map (
       clk           => aclk,
@@ -540,6 +569,8 @@ begin
       cfg_width     => cfg_width,
       cfg_height    => cfg_height,
       cfg_threshold => cfg_threshold,
+      cfg_cell_log  => cfg_cell_log,
+      cfg_per_cell  => cfg_per_cell,
       in_valid      => c_valid,
       in_ready      => c_ready,
       in_data       => c_data,

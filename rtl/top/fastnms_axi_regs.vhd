@@ -9,13 +9,15 @@
 -- read-only registers change nothing. Reads: rd_done and rd_data one clock
 -- after rd_en.
 --
--- Configuration: THRESHOLD, WIDTH and HEIGHT are written into shadow
--- registers and set cfg_pending; the core's values (cfg_*) take them when
--- cfg_apply pulses (the video gate does that at a start of frame, while the
--- input waits). WIDTH and HEIGHT writes are clamped to MIN_WIDTH .. MAX_WIDTH
+-- Configuration: THRESHOLD, WIDTH, HEIGHT and BUDGET are written into shadow
+-- registers; the core's values (cfg_*) take them on the clock cfg_apply is
+-- high (a start-of-frame pixel accepted at s_axis_video), so a frame takes
+-- the values written before its first pixel is accepted, and the input never
+-- waits for them. WIDTH and HEIGHT writes are clamped to MIN_WIDTH .. MAX_WIDTH
 -- and 7 .. MAX_HEIGHT, WIDTH then rounded down to a multiple of PPC (MIN_WIDTH:
 -- 7 with one pixel per clock, 8 with 2 or 4, the narrowest frame of
--- fastnms_window).
+-- fastnms_window). BUDGET.PER_CELL is clamped to MAX_PER_CELL, BUDGET.CELL
+-- to 16 .. 256 and rounded down to a power of two (kept as log2(CELL) - 4).
 --
 -- Commands (CMD) act only with KEY = 0x5A in the same write.
 --
@@ -42,7 +44,8 @@ entity fastnms_axi_regs is
     NMS               : string   := "3x3";
     SCORE_VIDEO       : boolean  := false;
     CORNER_FIFO_DEPTH : positive := 512;
-    PPC               : positive := 1
+    PPC               : positive := 1;
+    MAX_PER_CELL      : natural  := 0
   );
   port (
     clk : in    std_logic;
@@ -62,11 +65,12 @@ entity fastnms_axi_regs is
     live          : out   std_logic;
     soft_reset    : out   std_logic; -- one-clock pulse
     soft_busy     : in    std_logic; -- read back as CMD.SOFT_RESET
-    cfg_pending   : out   std_logic;
     cfg_apply     : in    std_logic;
     cfg_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     cfg_height    : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     cfg_threshold : out   unsigned(7 downto 0);
+    cfg_cell_log  : out   unsigned(2 downto 0);
+    cfg_per_cell  : out   unsigned(3 downto 0);
     -- status
     busy            : in    std_logic;
     evt_eol_early   : in    std_logic;
@@ -168,7 +172,8 @@ architecture rtl of fastnms_axi_regs is
   constant MAX_WORD     : word_t := field(MAX_WIDTH, MAX_SIZE_WIDTH_LSB, MAX_SIZE_WIDTH_WIDTH) or
                                     field(MAX_HEIGHT, MAX_SIZE_HEIGHT_LSB, MAX_SIZE_HEIGHT_WIDTH);
   constant BUILD_WORD   : word_t := field(CORNER_FIFO_DEPTH, BUILD_FIFO_DEPTH_LSB, BUILD_FIFO_DEPTH_WIDTH) or
-                                    field(boolean'pos(SCORE_VIDEO), BUILD_SCORE_VIDEO, 1);
+                                    field(boolean'pos(SCORE_VIDEO), BUILD_SCORE_VIDEO, 1) or
+                                    field(MAX_PER_CELL, BUILD_MAX_PER_CELL_LSB, BUILD_MAX_PER_CELL_WIDTH);
 
   -- The narrowest frame (fastnms_window with READ_LATENCY 1): 7 pixels in
   -- whole beats of PPC, at least two beats.
@@ -184,6 +189,10 @@ architecture rtl of fastnms_axi_regs is
   signal w_byte   : std_logic_vector(3 downto 0);
   signal w_width  : word_t; -- WIDTH and HEIGHT after the merge
   signal w_height : word_t;
+  signal w_budget : word_t;
+  -- BUDGET after the merge, clamped.
+  signal bu_cell_log : unsigned(2 downto 0);
+  signal bu_per_cell : unsigned(3 downto 0);
   -- Clamping flags of the merged WIDTH and HEIGHT, in two steps.
   signal wd_high      : std_logic;
   signal wd_low_min   : std_logic;
@@ -205,13 +214,16 @@ architecture rtl of fastnms_axi_regs is
   signal irq_enable    : std_logic;
   signal live_r        : std_logic;
   signal soft_pulse    : std_logic;
-  signal pending       : std_logic;
   signal thr_shadow    : unsigned(7 downto 0);
   signal width_shadow  : width_t;
   signal height_shadow : height_t;
   signal thr_active    : unsigned(7 downto 0);
   signal width_active  : width_t;
   signal height_active : height_t;
+  signal cell_shadow   : unsigned(2 downto 0);
+  signal k_shadow      : unsigned(3 downto 0);
+  signal cell_active   : unsigned(2 downto 0);
+  signal k_active      : unsigned(3 downto 0);
   signal sticky        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal events        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal clear_mask    : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
@@ -245,6 +257,9 @@ begin
   assert MAX_WIDTH >= 7 and MAX_WIDTH < 2 ** 16 and MAX_HEIGHT >= 7 and MAX_HEIGHT < 2 ** 16
     report "fastnms_axi_regs: MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"
     severity failure;
+  assert MAX_PER_CELL <= 15
+    report "fastnms_axi_regs: MAX_PER_CELL must be 0 .. 15"
+    severity failure;
   assert CORNER_FIFO_DEPTH < 2 ** 16
     report "fastnms_axi_regs: CORNER_FIFO_DEPTH must be below 65536"
     severity failure;
@@ -260,8 +275,8 @@ begin
         r_sel(i) <= to_sl(rd_index = i);
       end loop;
 
-      -- The bytes not strobed: zero in w_data, the old value in WIDTH and
-      -- HEIGHT (whose other bits read 0).
+      -- The bytes not strobed: zero in w_data, the old value in WIDTH,
+      -- HEIGHT and BUDGET (whose other bits read 0).
       w_merged <= wr_en;
       if wr_en = '1' then
         for b in 0 to 3 loop
@@ -270,10 +285,12 @@ begin
             w_data(8 * b + 7 downto 8 * b)   <= wr_data(8 * b + 7 downto 8 * b);
             w_width(8 * b + 7 downto 8 * b)  <= wr_data(8 * b + 7 downto 8 * b);
             w_height(8 * b + 7 downto 8 * b) <= wr_data(8 * b + 7 downto 8 * b);
+            w_budget(8 * b + 7 downto 8 * b) <= wr_data(8 * b + 7 downto 8 * b);
           else
             w_data(8 * b + 7 downto 8 * b)   <= (others => '0');
             w_width(8 * b + 7 downto 8 * b)  <= words(REG_WIDTH)(8 * b + 7 downto 8 * b);
             w_height(8 * b + 7 downto 8 * b) <= words(REG_HEIGHT)(8 * b + 7 downto 8 * b);
+            w_budget(8 * b + 7 downto 8 * b) <= words(REG_BUDGET)(8 * b + 7 downto 8 * b);
           end if;
         end loop;
       end if;
@@ -285,6 +302,23 @@ begin
       ht_high    <= or w_height(REG_DATA_WIDTH - 1 downto 16);
       ht_low_7   <= not at_least(unsigned(w_height(15 downto 0)), 7);
       ht_above   <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
+      -- CELL: 256 and above, then the highest of bits 23 .. 21, else 16.
+      if (or w_budget(31 downto BUDGET_CELL_LSB + 8)) = '1' then
+        bu_cell_log <= to_unsigned(4, 3);
+      elsif w_budget(BUDGET_CELL_LSB + 7) = '1' then
+        bu_cell_log <= to_unsigned(3, 3);
+      elsif w_budget(BUDGET_CELL_LSB + 6) = '1' then
+        bu_cell_log <= to_unsigned(2, 3);
+      elsif w_budget(BUDGET_CELL_LSB + 5) = '1' then
+        bu_cell_log <= to_unsigned(1, 3);
+      else
+        bu_cell_log <= to_unsigned(0, 3);
+      end if;
+      if unsigned(w_budget(BUDGET_PER_CELL_LSB + 3 downto BUDGET_PER_CELL_LSB)) > MAX_PER_CELL then
+        bu_per_cell <= to_unsigned(MAX_PER_CELL, 4);
+      else
+        bu_per_cell <= unsigned(w_budget(BUDGET_PER_CELL_LSB + 3 downto BUDGET_PER_CELL_LSB));
+      end if;
 
       do_write     <= w_flags1;
       wd_below_min <= wd_low_min and not wd_high;
@@ -361,18 +395,19 @@ begin
             height_shadow <= unsigned(w_height(height_t'range));
           end if;
         end if;
+        if w_sel(REG_BUDGET) = '1' then
+          cell_shadow <= bu_cell_log;
+          k_shadow    <= bu_per_cell;
+        end if;
       end if;
 
+      -- A write on the clock of an apply is for the next frame.
       if cfg_apply = '1' then
         thr_active    <= thr_shadow;
         width_active  <= width_shadow;
         height_active <= height_shadow;
-        pending       <= '0';
-      end if;
-      -- A write on the clock of an apply stays pending for the next one.
-      if do_write = '1' and (or w_byte) = '1' and
-         (w_sel(REG_THRESHOLD) = '1' or w_sel(REG_WIDTH) = '1' or w_sel(REG_HEIGHT) = '1') then
-        pending <= '1';
+        cell_active   <= cell_shadow;
+        k_active      <= k_shadow;
       end if;
 
       sticky    <= (sticky and not clear_mask) or events;
@@ -384,13 +419,16 @@ begin
         irq_enable    <= CTRL_IRQ_ENABLE_RESET;
         live_r        <= CTRL_LIVE_RESET;
         soft_pulse    <= '0';
-        pending       <= '0';
         thr_shadow    <= unsigned(THRESHOLD_VALUE_RESET);
         thr_active    <= unsigned(THRESHOLD_VALUE_RESET);
         width_shadow  <= to_unsigned(MAX_WIDTH, width_t'length);
         width_active  <= to_unsigned(MAX_WIDTH, width_t'length);
         height_shadow <= to_unsigned(MAX_HEIGHT, height_t'length);
         height_active <= to_unsigned(MAX_HEIGHT, height_t'length);
+        cell_shadow   <= to_unsigned(0, 3);
+        cell_active   <= to_unsigned(0, 3);
+        k_shadow      <= unsigned(BUDGET_PER_CELL_RESET);
+        k_active      <= unsigned(BUDGET_PER_CELL_RESET);
         sticky        <= (others => '0');
         interrupt     <= '0';
       end if;
@@ -401,10 +439,11 @@ begin
   enable        <= enable_r;
   live          <= live_r;
   soft_reset    <= soft_pulse;
-  cfg_pending   <= pending;
   cfg_threshold <= thr_active;
   cfg_width     <= width_active;
   cfg_height    <= height_active;
+  cfg_cell_log  <= cell_active;
+  cfg_per_cell  <= k_active;
 
   -- ---- frame statistics ------------------------------------------------------
 
@@ -490,7 +529,9 @@ begin
     REG_BUILD        => BUILD_WORD,
     REG_CMD          => place(soft_busy, CMD_SOFT_RESET),
     REG_DROPPED      => std_logic_vector(dropped),
-    REG_INPUT_STALLS => std_logic_vector(stalls)
+    REG_INPUT_STALLS => std_logic_vector(stalls),
+    REG_BUDGET       => place(std_logic_vector(k_shadow), BUDGET_PER_CELL_LSB) or
+    place(std_logic_vector(shift_left(to_unsigned(16, BUDGET_CELL_WIDTH), to_integer(cell_shadow))), BUDGET_CELL_LSB)
   );
 
 end architecture rtl;

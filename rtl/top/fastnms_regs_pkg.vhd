@@ -12,7 +12,7 @@ package fastnms_regs_pkg is
 
   constant REG_ADDR_WIDTH : positive := 12;
   constant REG_DATA_WIDTH : positive := 32;
-  constant REG_COUNT      : positive := 15;
+  constant REG_COUNT      : positive := 16;
 
   -- Word indices.
   constant REG_ID           : natural := 0;
@@ -30,6 +30,7 @@ package fastnms_regs_pkg is
   constant REG_CMD          : natural := 12;
   constant REG_DROPPED      : natural := 13;
   constant REG_INPUT_STALLS : natural := 14;
+  constant REG_BUDGET       : natural := 15;
 
   -- ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
   constant ID_MAGIC_LSB   : natural                       := 0;
@@ -42,7 +43,7 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"03";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"04";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";
@@ -71,16 +72,19 @@ package fastnms_regs_pkg is
   constant STATUS_OVERFLOW          : natural   := 6;
   constant STATUS_OVERFLOW_RESET    : std_logic := '0';
 
-  -- THRESHOLD: FAST threshold t, from the next start of frame.
+  -- THRESHOLD: FAST threshold t, for the frames whose first pixel is accepted after the write's
+  -- B response.
   constant THRESHOLD_VALUE_LSB   : natural                      := 0;
   constant THRESHOLD_VALUE_WIDTH : positive                     := 8;
   constant THRESHOLD_VALUE_RESET : std_logic_vector(7 downto 0) := x"14";
 
-  -- WIDTH: Frame width in pixels, from the next start of frame.
+  -- WIDTH: Frame width in pixels, for the frames whose first pixel is accepted after the
+  -- write's B response.
   constant WIDTH_VALUE_LSB   : natural  := 0;
   constant WIDTH_VALUE_WIDTH : positive := 16;
 
-  -- HEIGHT: Frame height in lines, from the next start of frame.
+  -- HEIGHT: Frame height in lines, for the frames whose first pixel is accepted after the
+  -- write's B response.
   constant HEIGHT_VALUE_LSB   : natural  := 0;
   constant HEIGHT_VALUE_WIDTH : positive := 16;
 
@@ -116,9 +120,11 @@ package fastnms_regs_pkg is
   constant MAX_SIZE_HEIGHT_WIDTH : positive := 16;
 
   -- BUILD: Other build options.
-  constant BUILD_FIFO_DEPTH_LSB   : natural  := 0;
-  constant BUILD_FIFO_DEPTH_WIDTH : positive := 16;
-  constant BUILD_SCORE_VIDEO      : natural  := 16;
+  constant BUILD_FIFO_DEPTH_LSB     : natural  := 0;
+  constant BUILD_FIFO_DEPTH_WIDTH   : positive := 16;
+  constant BUILD_SCORE_VIDEO        : natural  := 16;
+  constant BUILD_MAX_PER_CELL_LSB   : natural  := 20;
+  constant BUILD_MAX_PER_CELL_WIDTH : positive := 4;
 
   -- CMD: Commands. A command acts only when KEY = 0x5A is written in the same write (bits
   -- 31:24, strobed), so a read-modify-write or a stray write cannot trigger one.
@@ -140,6 +146,17 @@ package fastnms_regs_pkg is
   constant INPUT_STALLS_VALUE_LSB   : natural                       := 0;
   constant INPUT_STALLS_VALUE_WIDTH : positive                      := 32;
   constant INPUT_STALLS_VALUE_RESET : std_logic_vector(31 downto 0) := x"00000000";
+
+  -- BUDGET: Keypoint budget per grid cell (docs/fastnms_cell_budget.md): at most PER_CELL
+  -- records per CELL x CELL cell, the best scores, a tie to the first in raster order; for the
+  -- frames whose first pixel is accepted after the write's B response. Reads back the values in
+  -- use after clamping.
+  constant BUDGET_PER_CELL_LSB   : natural                      := 0;
+  constant BUDGET_PER_CELL_WIDTH : positive                     := 4;
+  constant BUDGET_PER_CELL_RESET : std_logic_vector(3 downto 0) := x"0";
+  constant BUDGET_CELL_LSB       : natural                      := 16;
+  constant BUDGET_CELL_WIDTH     : positive                     := 9;
+  constant BUDGET_CELL_RESET     : std_logic_vector(8 downto 0) := "000010000";
 
   -- The corner record (tdata of m_axis_corners).
   constant REC_WIDTH       : positive := 64;

@@ -1,16 +1,13 @@
 -- The gate between the video input and fastnms_core: it decides at each start
--- of frame whether the frame is processed, and applies a new configuration
--- safely.
+-- of frame whether the frame is processed.
 --
 -- At a pixel with sof:
 --   enable = '0'          the pixel is dropped and the gate discards every
 --                         pixel up to the next start of frame;
---   cfg_pending = '1'     the pixel waits: cfg_apply pulses (the register file
---                         copies the new threshold and size to the core's
---                         inputs), then the gate holds the pixel SETTLE clocks
---                         more, so the core's configuration is stable for the
---                         two clocks before it takes the pixel;
 --   otherwise             the pixel passes, and so does the rest of the frame.
+-- (The configuration is not the gate's: the register file applies it when the
+-- frame's first pixel is accepted at the top's input, two clocks at least
+-- before that pixel reaches the core, and nothing waits for it.)
 -- While discarding, pixels are consumed and dropped. soft (a soft reset in
 -- progress) blocks the input and clears the output register; afterwards the
 -- gate discards up to the next start of frame. After rst it passes everything
@@ -27,7 +24,6 @@ library work;
 
 entity fastnms_video_gate is
   generic (
-    SETTLE     : positive := 3;
     DATA_WIDTH : positive := 8
   );
   port (
@@ -35,8 +31,6 @@ entity fastnms_video_gate is
     rst         : in    std_logic;
     soft        : in    std_logic;
     enable      : in    std_logic;
-    cfg_pending : in    std_logic;
-    cfg_apply   : out   std_logic;
     in_valid    : in    std_logic;
     in_ready    : out   std_logic;
     in_data     : in    std_logic_vector(DATA_WIDTH - 1 downto 0);
@@ -53,8 +47,7 @@ end entity fastnms_video_gate;
 architecture rtl of fastnms_video_gate is
 
   signal discard    : std_logic;
-  signal wait_count : natural range 0 to SETTLE;
-  signal open_gate  : std_logic; -- not soft, not settling
+  signal open_gate  : std_logic; -- no soft reset in progress
   signal pass       : std_logic; -- the pixel goes to the core
   signal drop       : std_logic; -- the pixel is consumed and dropped
   signal skid_ready : std_logic;
@@ -63,13 +56,8 @@ architecture rtl of fastnms_video_gate is
 
 begin
 
-  -- cfg_apply's copy takes a clock; the core needs the copy stable for two more.
-  assert SETTLE >= 3
-    report "fastnms_video_gate: SETTLE must be at least 3"
-    severity failure;
-
-  open_gate <= not soft and to_sl(wait_count = 0);
-  pass      <= open_gate and ((not in_sof and not discard) or (in_sof and enable and not cfg_pending));
+  open_gate <= not soft;
+  pass      <= open_gate and ((not in_sof and not discard) or (in_sof and enable));
   drop      <= open_gate and ((not in_sof and discard) or (in_sof and not enable));
   in_ready  <= (pass and skid_ready) or drop;
 
@@ -77,30 +65,19 @@ begin
   begin
 
     if rising_edge(clk) then
-      cfg_apply <= '0';
-      if wait_count /= 0 then
-        wait_count <= wait_count - 1;
-      end if;
-
       if in_valid = '1' and in_sof = '1' and open_gate = '1' then
         if enable = '0' then
           discard <= '1';
-        elsif cfg_pending = '1' then
-          cfg_apply  <= '1';
-          wait_count <= SETTLE;
         elsif skid_ready = '1' then
           discard <= '0';
         end if;
       end if;
 
       if soft = '1' then
-        discard    <= '1';
-        wait_count <= 0;
+        discard <= '1';
       end if;
       if rst = '1' then
-        discard    <= '0';
-        wait_count <= 0;
-        cfg_apply  <= '0';
+        discard <= '0';
       end if;
     end if;
 

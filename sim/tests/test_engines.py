@@ -70,8 +70,8 @@ def test_engines_agree(score: str, nms: str, rng, seed):
 def test_engines_four_pixels_per_clock(score: str, rng, seed):
     """PPC 4 (opencv/sad + 3x3, MAX 1920x1080): both engines agree with idles and
     stalls; without them every frame after the first takes its W x H / 4 beats
-    in W x H / 4 + 4 clocks (the top's configuration hold), also a 1920x1080
-    photograph, with the golden model's records."""
+    in W x H / 4 clocks (the input never waits, not even for a register write),
+    also a 1920x1080 photograph, with the golden model's records."""
     generics = generics_for(score, "3x3", 4)
     photo = testimages.cover(testimages.crop(testimages.real_images()[1], 480, 270), 1920, 1080)
     # Each frame at least as wide as the one before (a narrower frame waits
@@ -88,10 +88,8 @@ def test_engines_four_pixels_per_clock(score: str, rng, seed):
     for i, ((img, _), f) in enumerate(zip(frames, free.frames, strict=True)):
         if i:
             beats = img.size // 4
-            # The 4 stalls: the top's hold at a start of frame after a
-            # register write (docs/fastnms_axi.md), the only ones.
-            assert f.input_stalls == 4, f"frame {i}: {f.input_stalls} input stalls"
-            assert f.last_pixel - f.first_pixel + 1 == beats + 4, f"frame {i}: not 4 px/clock"
+            assert f.input_stalls == 0, f"frame {i}: {f.input_stalls} input stalls"
+            assert f.last_pixel - f.first_pixel + 1 == beats, f"frame {i}: not 4 px/clock"
     busy = Timing(idle=Pattern(rate=0.25), stall=Pattern(rate=0.4), seed=seed % 1000)
     small = frames[:3]
     fast = run_rtl(small, score, "3x3", timing=busy, generics=generics)
@@ -229,15 +227,14 @@ def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
     checkerboards of periods 1 to 4, combs joined at the bottom): the golden
     model's records, and one pixel per clock whatever the content: every frame
     takes the same clocks from its first pixel to its end-of-frame beat, frames
-    start W x H + 4 clocks apart, and the input waits 4 clocks per frame, all
-    of them the AXI top's hold at a start of frame after a register write
-    (docs/fastnms_axi.md), as with every other NMS."""
+    start W x H clocks apart (registers written between them), and the input
+    never waits."""
     frames = hard_frames(rng, 1920, 40)
     result = run_rtl(frames, score, nms)
     assert_golden(result, frames, score, nms, seed)
     assert len({f.cycles for f in result.frames}) == 1, [f.cycles for f in result.frames]
-    assert np.diff([f.first_pixel for f in result.frames]).tolist() == [1920 * 40 + 4] * 9
-    assert [f.input_stalls for f in result.frames] == [4] * 10
+    assert np.diff([f.first_pixel for f in result.frames]).tolist() == [1920 * 40] * 9
+    assert [f.input_stalls for f in result.frames] == [0] * 10
     for (_img, t), f in zip(frames, result.frames, strict=True):
         print(f"t={t}: {len(f.records)} records, {f.cycles} clocks")
 
@@ -248,13 +245,13 @@ def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
 )
 def test_region_nms_hard_content_full_hd(score: str, nms: str, rng, seed):
     """The same content at 1920x1080, and blurred noise at t = 0..20: the golden's
-    records, frames W x H + 4 clocks apart."""
+    records, frames W x H clocks apart."""
     frames = hard_frames(rng, 1920, 1080)
     frames += [(testimages.blurred_noise(rng, 1920, 1080), t) for t in (10, 15, 20)]
     result = run_rtl(frames, score, nms)
     assert_golden(result, frames, score, nms, seed)
     starts = [f.first_pixel for f in result.frames]
-    assert np.diff(starts).tolist() == [1920 * 1080 + 4] * (len(frames) - 1)
+    assert np.diff(starts).tolist() == [1920 * 1080] * (len(frames) - 1)
 
 
 def test_netlist_check_refuses_wide_string_constants():

@@ -14,7 +14,7 @@ import cocotb
 import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge
-from fastnms.golden.budget import cell_budget
+from fastnms.golden.budget import hardware_order
 from fastnms.golden.model import detect
 from fastnms.testing import images as testimages
 
@@ -34,13 +34,7 @@ CLEAR_CLOCKS = (MAX_WIDTH + 15) // 16
 def expected(records: np.ndarray, cell_log: int, per_cell: int) -> list[tuple[int, int, int]]:
     """The frame's output records in the block's order."""
     k = min(per_cell, MAX_PER_CELL)
-    if k == 0:
-        return [tuple(r) for r in records.tolist()]
-    cell = 16 << min(cell_log, 4)
-    kept = cell_budget(records, cell, k)
-    x, y, s = kept[:, 0], kept[:, 1], kept[:, 2]
-    order = np.lexsort((x, y, -s, x // cell, y // cell))
-    return [tuple(r) for r in kept[order].tolist()]
+    return [tuple(r) for r in hardware_order(records, 16 << min(cell_log, 4), k).tolist()]
 
 
 class TB:

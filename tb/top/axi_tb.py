@@ -22,6 +22,7 @@ import cv2
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
 from cocotbext.axi import AxiResp, AxiStreamFrame
+from fastnms.golden.budget import hardware_order
 from fastnms.golden.fast import fast_maps
 from fastnms.golden.model import detect
 from fastnms.sim import regs
@@ -40,6 +41,7 @@ NMS = GENERICS["NMS"]
 SCORE_VIDEO = bool(GENERICS.get("SCORE_VIDEO", False))
 FIFO_DEPTH = GENERICS.get("CORNER_FIFO_DEPTH", 512)
 PPC = GENERICS.get("PPC", 1)
+MAX_PER_CELL = GENERICS.get("MAX_PER_CELL", 0)
 # The narrowest frame the WIDTH register takes (fastnms_axi_regs: the core's
 # window generators read their line buffers with latency 1).
 MIN_WIDTH = min_width(7, PPC)
@@ -52,7 +54,23 @@ TIMEOUT_MS = 20 + 2e-3 * MAX_WIDTH * MAX_HEIGHT
 
 def all_generics() -> dict[str, object]:
     """The top's generics, defaults filled in."""
-    return {"SCORE_VIDEO": False, "CORNER_FIFO_DEPTH": 512, "PPC": 1, **GENERICS}
+    return {
+        "SCORE_VIDEO": False,
+        "CORNER_FIFO_DEPTH": 512,
+        "PPC": 1,
+        "MAX_PER_CELL": 0,
+        **GENERICS,
+    }
+
+
+def budget_register(merged: int) -> int:
+    """BUDGET after a write whose merged value is `merged`: PER_CELL clamped to
+    MAX_PER_CELL; CELL clamped to 16 .. 256 (bits 31:25 count), then rounded
+    down to a power of two."""
+    cell = min(merged >> regs.BUDGET_CELL.lsb, 256)
+    cell = 1 << max(4, cell.bit_length() - 1)
+    k = min(regs.BUDGET_PER_CELL.get(merged), MAX_PER_CELL)
+    return k << regs.BUDGET_PER_CELL.lsb | cell << regs.BUDGET_CELL.lsb
 
 
 def whole_beats(width: int) -> int:
@@ -175,6 +193,15 @@ async def registers(dut):
     assert await tb.read(regs.HEIGHT) == MAX_HEIGHT
     await tb.write(regs.HEIGHT, 3)
     assert await tb.read(regs.HEIGHT) == 7
+    assert regs.BUILD_MAX_PER_CELL.get(await tb.read(regs.BUILD)) == MAX_PER_CELL
+    for k in range(16):
+        for cell in (0, 15, 16, 17, 31, 32, 48, 64, 100, 128, 255, 256, 257, 511, 0x7F00):
+            written = k | cell << 16
+            await tb.write(regs.BUDGET, written)
+            want = budget_register(written)
+            got = await tb.read(regs.BUDGET)
+            assert got == want, f"BUDGET write 0x{written:x}: 0x{got:x}, want 0x{want:x}"
+    await tb.write(regs.BUDGET, 0)
 
     # MODE: asking for a variant that is not built in changes nothing.
     mode = await tb.read(regs.MODE)
@@ -682,15 +709,11 @@ async def live_mode(dut):
     await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask | regs.CTRL_LIVE.mask)
     tb.sink.pause = True
     n = 3
-    pixels = tb.pixels_in
+    # Not a clock of waiting, also at the first start of frame after the
+    # configuration writes.
+    stalls = tb.input_stalls
     for _ in range(n):
         await tb.send_lines(video_lines(img, PPC))
-    # The first start of frame after a configuration write waits while the
-    # configuration is applied (4 clocks, also in LIVE mode; the pixel waits in the
-    # input buffer and the gate); from then on, none.
-    while tb.pixels_in < pixels + 8:
-        await RisingEdge(dut.aclk)
-    stalls = tb.input_stalls
     while not tb.source.idle():
         await RisingEdge(dut.aclk)
     await ClockCycles(dut.aclk, 20 * w)  # the pipeline's tail (the region NMS flush)
@@ -750,6 +773,166 @@ async def live_mode(dut):
     await tb.clear_status()
 
 
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
+async def live_config_writes(dut):
+    """CTRL.LIVE = 1, frames back to back without an idle clock, and THRESHOLD
+    writes whose B response lands on every clock from 12 before to 12 after a
+    start of frame: a frame whose first pixel is accepted after the write's B
+    response takes the new value, a frame accepted before the write began the
+    old one, one in between either (exactly); s_axis_video_tready is high on
+    every clock."""
+    tb = await TB.create(dut, 0, 0)
+    await tb.reset()
+    w, h = whole_beats(min(MAX_WIDTH, 24)), min(MAX_HEIGHT, 9)
+    img = testimages.noise(tb.np_rng, w, h)
+    thresholds = (5, 40)
+    wants = [golden(img, t) for t in thresholds]
+    assert wants[0] != wants[1]
+    await tb.configure(w, h, thresholds[0])
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask | regs.CTRL_LIVE.mask)
+    # The write's latency, from its start to its B handshake.
+    start = tb.cycle
+    await tb.write(regs.THRESHOLD, thresholds[0])
+    latency = tb.b_clocks[-1] - start
+
+    low = 0
+
+    async def ready_high() -> None:
+        nonlocal low
+        while True:
+            await RisingEdge(dut.aclk)
+            low += dut.s_axis_video_tready.value != 1
+
+    offsets = list(range(-12, 13))
+    period = w * h // PPC
+    sofs = len(tb.sof_clocks)
+    cocotb.start_soon(ready_high())
+    for _ in range(len(offsets) + 1):
+        await tb.send_lines(video_lines(img, PPC))
+    while len(tb.sof_clocks) == sofs:
+        await RisingEdge(dut.aclk)
+    first = tb.sof_clocks[sofs]
+    writes = []  # (start clock, B clock, value)
+    for k, offset in enumerate(offsets, start=1):
+        target = first + k * period + offset - latency
+        while tb.cycle < target:
+            await RisingEdge(dut.aclk)
+        begun = tb.cycle
+        await tb.write(regs.THRESHOLD, thresholds[k % 2])
+        writes.append((begun, tb.b_clocks[-1], k % 2))
+    got = await tb.receive(len(offsets) + 1, 4 * (len(offsets) + 1) * period + 2000)
+    frame_sofs = tb.sof_clocks[sofs:]
+    assert frame_sofs == [first + k * period for k in range(len(offsets) + 1)], "input waited"
+    assert low == 0, f"s_axis_video_tready low on {low} clocks"
+    landed = set()
+    for k, frame in enumerate(got):
+        records, _ = decode(frame)
+        if NMS.startswith("region"):  # records leave as regions close
+            records = sorted(records, key=lambda r: (r[1], r[0]))
+        used = [i for i, want in enumerate(wants) if records == (want or [(0, 0, 0)])]
+        assert used, f"frame {k}: records of neither threshold"
+        if k == 0:
+            assert used == [0]
+            continue
+        begun, b_clock, value = writes[k - 1]
+        sof = frame_sofs[k]
+        if sof > b_clock:
+            assert used == [value], (
+                f"frame {k}: first pixel {sof - b_clock} clocks after B, old value"
+            )
+        elif sof <= begun:
+            assert used == [1 - value], f"frame {k}: first pixel before the write, new value"
+        landed.add(b_clock - sof)
+    assert len(landed) >= 20 and min(landed) <= -10 and max(landed) >= 10, (
+        f"B responses landed at {sorted(landed)} clocks from a start of frame"
+    )
+    dut._log.info("B responses at %s clocks from a start of frame", sorted(landed))
+    assert await tb.read(regs.DROPPED) == 0
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask)
+
+
+def budget_golden(img: np.ndarray, t: int, budget: tuple[int, int]) -> list[Record]:
+    """The records of the budgeted frame, in the block's output order; PER_CELL above
+    MAX_PER_CELL is clamped as the register does."""
+    cell, k = budget
+    kept = hardware_order(np.array(golden(img, t), dtype=np.int64), cell, min(k, MAX_PER_CELL))
+    return [tuple(int(v) for v in r) for r in kept.tolist()]
+
+
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
+async def budget_frames(dut):
+    """The keypoint budget through the top (a build with MAX_PER_CELL > 0): frames
+    back to back with a different BUDGET each (every CELL, K from 0 to above
+    MAX_PER_CELL), photograph crops, noise at threshold 0 at full width, against the
+    golden model's budget in the block's order; then LIVE mode with the heaviest
+    record stream (noise at t = 0, full width, CELL 16, K = MAX_PER_CELL): tready high
+    on every clock; then aresetn in the middle of a budgeted frame."""
+    assert MAX_PER_CELL > 0, "a build with the budget"
+    tb = await TB.create(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    crops = json.loads(os.environ.get("TB_CROPS", "[]"))
+    images = [
+        testimages.noise(rng, MAX_WIDTH, MAX_HEIGHT),
+        *[testimages.crop(Path(p), cw, ch) for p, cw, ch, _ in crops],
+        testimages.blurred_noise(rng, whole_beats(MAX_WIDTH // 2 + 3), MAX_HEIGHT // 2),
+        testimages.checkerboard(rng, whole_beats(40), 30),
+    ]
+    frames, budgets = [], []
+    choices = [(16, 1), (32, 2), (64, MAX_PER_CELL), (128, 3), (256, 1), (16, 0), (16, 15)]
+    for i, (cell, k) in enumerate(choices):
+        img = images[i % len(images)]
+        t = 0 if i == 0 else int(tb.rng.choice([0, 10, 20]))
+        frames.append((img, t))
+        budgets.append((cell, k))
+    sender = cocotb.start_soon(tb.send_frames(frames, budgets))
+    total = sum(img.size for img, _ in frames)
+    got = await tb.receive(len(frames), 20 * total + 20000)
+    await sender
+    for i, ((img, t), budget, frame) in enumerate(zip(frames, budgets, got, strict=True)):
+        want = budget_golden(img, t, budget)
+        tb.check_frame(
+            frame, want, f"budget {budget} frame {i} ({img.shape[1]}x{img.shape[0]} t={t})"
+        )
+        dut._log.info("budget %s: %d of %d records", budget, len(want), len(golden(img, t)))
+    assert regs.BUDGET_PER_CELL.get(await tb.read(regs.BUDGET)) == min(15, MAX_PER_CELL)
+
+    # LIVE: the heaviest stream, the input never waits.
+    tb.set_stall(0)
+    noise = testimages.noise(rng, MAX_WIDTH, 40)
+    budget = (16, MAX_PER_CELL)
+    await tb.configure(MAX_WIDTH, 40, 0, budget)
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask | regs.CTRL_LIVE.mask)
+    stalls = tb.input_stalls
+    for _ in range(3):
+        await tb.send_lines(video_lines(noise, PPC))
+    got = await tb.receive(3, 20 * noise.size)
+    for frame in got:
+        tb.check_frame(frame, budget_golden(noise, 0, budget), "LIVE, noise at t = 0")
+    assert tb.input_stalls == stalls, f"{tb.input_stalls - stalls} input stalls in LIVE mode"
+    assert await tb.read(regs.DROPPED) == 0
+    await tb.write(regs.CTRL, regs.CTRL_ENABLE.mask)
+    tb.set_stall(STALL)
+
+    # aresetn while a budgeted frame's records are in flight.
+    await tb.configure(MAX_WIDTH, 40, 0, (32, 2))
+    await tb.send_lines(video_lines(noise, PPC))
+    while not tb.sink.active and tb.sink.empty():
+        await RisingEdge(dut.aclk)
+    await ClockCycles(dut.aclk, 5)
+    await tb.reset()
+    assert await tb.read(regs.BUDGET) == regs.reset_value("BUDGET", all_generics())
+    img = testimages.blurred_noise(rng, MAX_WIDTH, 40)
+    await tb.check_frames([(img, 10)], "after aresetn, budget off", opencv=False)
+    frames = [(img, 10), (testimages.noise(rng, 40, 30), 5)]
+    budgets = [(64, 1), (16, 2)]
+    sender = cocotb.start_soon(tb.send_frames(frames, budgets))
+    got = await tb.receive(2, 40 * MAX_WIDTH * 40)
+    await sender
+    for (img, t), budget, frame in zip(frames, budgets, got, strict=True):
+        tb.check_frame(frame, budget_golden(img, t, budget), f"after aresetn, budget {budget}")
+
+
 class RegisterModel:
     """What the registers of an idle top (no video) read after any writes: the
     read/write fields with byte strobes, WIDTH/HEIGHT clamped after the byte merge,
@@ -775,6 +958,9 @@ class RegisterModel:
             elif merged >> 16 or merged > limit:
                 merged = limit
             self.values[offset] = merged
+        elif offset == regs.BUDGET:
+            merged = (self.values[offset] & ~bytes_mask) | (data & bytes_mask)
+            self.values[offset] = budget_register(merged)
         elif offset != regs.MODE:
             keep = self.rw_mask[offset] & bytes_mask
             self.values[offset] = (self.values[offset] & ~keep) | (data & keep)

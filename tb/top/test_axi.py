@@ -11,6 +11,7 @@ from tb.harness import run_cocotb
 
 SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
+PHOTO_BUDGET = {"MAX_WIDTH": 128, "MAX_HEIGHT": 96, "CORNER_FIFO_DEPTH": 64}
 # (SCORE, NMS) variants of fastnms_core; one line per variant.
 VARIANTS = [
     ("opencv", "3x3"),
@@ -48,10 +49,37 @@ def test_axi_robustness(request, score, nms):
         {**SMALL, "SCORE": score, "NMS": nms},
         testcase=(
             "malformed_then_good,reset_mid_frame,interrupt_and_enable,fifo_full,"
-            "valids_low_in_reset,live_mode"
+            "valids_low_in_reset,live_mode,live_config_writes"
         ),
         name=request.node.nodeid,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
+    )
+
+
+BUDGET_CASES = [("opencv", "3x3", 1, 15), ("sad", "none", 1, 4), ("opencv", "3x3", 4, 15)]
+
+
+@pytest.mark.parametrize(
+    ("score", "nms", "ppc", "k"),
+    BUDGET_CASES,
+    ids=[f"{s}-{n}-ppc{p}-k{k}" for s, n, p, k in BUDGET_CASES],
+)
+def test_axi_budget(request, score, nms, ppc, k):
+    """The keypoint budget in the top (MAX_PER_CELL = k): the BUDGET register's
+    clamping, budgeted frames back to back with every CELL and several K, photograph
+    crops, LIVE mode with noise at t = 0 at full width, aresetn mid-frame; input
+    idles and output stalls."""
+    run_cocotb(
+        "fastnms_axi",
+        "axi_tb",
+        {**PHOTO_BUDGET, "SCORE": score, "NMS": nms, "PPC": ppc, "MAX_PER_CELL": k},
+        testcase="registers,budget_frames,live_config_writes",
+        name=request.node.nodeid,
+        env={
+            "TB_IDLE": "0.1",
+            "TB_STALL": "0.2",
+            "TB_CROPS": json.dumps(testimages.photo_crops([20])[:1]),
+        },
     )
 
 
