@@ -74,7 +74,9 @@ demo: setup
 	  --csv $(DEMO)/opencv_3x3.csv --png $(DEMO)/opencv_3x3.png
 	$(VENV)/bin/fastnms compare "$(IMAGE)" -t $(DEMO_T) --score sad --nms region4 \
 	  --csv $(DEMO)/paper_sad_region4.csv --png $(DEMO)/paper_sad_region4.png
-	@echo "wrote $(DEMO)/opencv_3x3.png and $(DEMO)/paper_sad_region4.png (+ .csv): the corners the RTL emitted"
+	$(VENV)/bin/fastnms compare "$(IMAGE)" -t $(DEMO_T) --score opencv --nms 3x3 \
+	  --cell 64 --per-cell 4 --csv $(DEMO)/opencv_3x3_budget.csv --png $(DEMO)/opencv_3x3_budget.png
+	@echo "wrote $(DEMO)/opencv_3x3.png, $(DEMO)/paper_sad_region4.png and $(DEMO)/opencv_3x3_budget.png (at most 4 per 64x64 cell) (+ .csv): the corners the RTL emitted"
 
 test: setup lint
 	$(PYTEST) -m "not slow"

@@ -88,6 +88,30 @@ def cell_arg(text: str) -> int:
     return value
 
 
+def add_budget_args(p: argparse.ArgumentParser, where: str = "") -> None:
+    p.add_argument(
+        "--cell",
+        type=cell_arg,
+        metavar="N",
+        help="keypoint budget: cells of N x N pixels from the origin, N a power of two in "
+        "16..256 (with --per-cell)",
+    )
+    p.add_argument(
+        "--per-cell",
+        type=per_cell_arg,
+        metavar="K",
+        help=f"keypoint budget: keep the K (1..{MAX_PER_CELL}) best-scoring keypoints of "
+        f"each cell, ties to the first in raster order (with --cell){where}",
+    )
+
+
+def budget_of(args: argparse.Namespace) -> tuple[int, int] | None:
+    """(cell, per_cell) of --cell and --per-cell, None without them."""
+    if (args.cell is None) != (args.per_cell is None):
+        raise UsageError("--cell and --per-cell go together")
+    return None if args.cell is None else (args.cell, args.per_cell)
+
+
 def per_cell_arg(text: str) -> int:
     """argparse type: keypoints per cell, 1..15."""
     try:
@@ -283,21 +307,7 @@ def add_golden_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
         "(CSV x,y,score,angle,descriptor: the angle in degrees as a float32, the "
         "descriptor as 64 hex digits, byte 0 first; the PNG draws each orientation)",
     )
-    p.add_argument(
-        "--cell",
-        type=cell_arg,
-        metavar="N",
-        help="keypoint budget: cells of N x N pixels from the origin, N a power of two in "
-        "16..256 (with --per-cell)",
-    )
-    p.add_argument(
-        "--per-cell",
-        type=per_cell_arg,
-        metavar="K",
-        help=f"keypoint budget: keep the K (1..{MAX_PER_CELL}) best-scoring keypoints of "
-        "each cell, ties to the first in raster order (with --cell; with --orb after the "
-        "31-pixel border)",
-    )
+    add_budget_args(p, " (with --orb after the 31-pixel border)")
     return p
 
 
@@ -315,6 +325,10 @@ def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
         "image files in name order, a video file for its frames",
     )
     add_detection_args(p, with_image=False)
+    add_budget_args(
+        p,
+        "; the simulated IP is then built with the budget (MAX_PER_CELL 15); --nms 3x3 or none",
+    )
     p.add_argument(
         "--engine",
         choices=ENGINES,
@@ -387,7 +401,8 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument(
         "--json",
         metavar="OUT.json",
-        help="write width, height, threshold, score, nms, ppc, engine, timing, corners, cycles, "
+        help="write width, height, threshold, score, nms, ppc, cell, per_cell (null without a "
+        "budget), engine, timing, corners, cycles, "
         "input_stalls, status_flags, wall_seconds (and `frames` for several)",
     )
     return p
@@ -501,9 +516,7 @@ def write_outputs(
 
 
 def run_golden(args: argparse.Namespace) -> int:
-    if (args.cell is None) != (args.per_cell is None):
-        raise UsageError("--cell and --per-cell go together")
-    budget = (args.cell, args.per_cell or 0)
+    budget = budget_of(args) or (None, 0)
     check_outputs(args.csv, args.png)
     img = load_input(args.image)
 
@@ -570,6 +583,12 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             raise UsageError(f"{name}: {why}")
     if args.engine != "verilator" and (args.hblank or args.vblank):
         raise UsageError("--hblank and --vblank need --engine verilator")
+    budget = budget_of(args)
+    if budget is not None and args.nms not in ("3x3", "none"):
+        raise UsageError(
+            "--cell and --per-cell need --nms 3x3 or none (the budget takes records in "
+            "raster order; the region NMS's come as regions close)"
+        )
     progress = Progress()
 
     def announce(text: str) -> None:
@@ -585,8 +604,13 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             progress=progress,
             announce=announce,
             generics=generics_for(
-                args.score, args.nms, args.ppc, build_size([img.shape for _, img in frames])
+                args.score,
+                args.nms,
+                args.ppc,
+                build_size([img.shape for _, img in frames]),
+                budget is not None,
             ),
+            budget=budget,
         )
     except SimError as e:
         raise UsageError(str(e)) from None
@@ -601,7 +625,8 @@ def frame_summary(name: str, args: argparse.Namespace, frame: FrameResult) -> st
     w, h = frame.width, frame.height
     return (
         f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}"
-        f"{f' ppc={args.ppc}' if args.ppc != 1 else ''}: "
+        f"{f' ppc={args.ppc}' if args.ppc != 1 else ''}"
+        f"{f' cell={args.cell} per-cell={args.per_cell}' if args.cell else ''}: "
         f"{frame.records.shape[0]} corners; {frame.cycles} cycles, "
         f"{frame.cycles / (w * h):.4f} cycles per pixel"
     )
@@ -646,6 +671,8 @@ def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim
         "score": args.score,
         "nms": args.nms,
         "ppc": args.ppc,
+        "cell": args.cell,
+        "per_cell": args.per_cell,
         "engine": args.engine,
         "timing": timing_of(args).as_dict(),
         "corners": sum(int(f.records.shape[0]) for f in sim.frames),
@@ -723,10 +750,13 @@ def run_compare(args: argparse.Namespace) -> int:
     write_sim_outputs(frames, sim, args)
     print(sim_summary(frames, args, sim))
     status = 0
+    budget = budget_of(args)
     for i, ((name, img), got) in enumerate(zip(frames, sim.frames, strict=True)):
         references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
         if args.score == "opencv" and args.nms == "3x3":
             references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
+        if budget is not None:
+            references = {f"{k} + budget": cell_budget(v, *budget) for k, v in references.items()}
         prefix = f"frame {i} ({os.path.basename(name)}): " if len(frames) > 1 else ""
         for ref, want in references.items():
             diff = differences(got.records, want)

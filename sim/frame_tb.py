@@ -12,7 +12,8 @@ edge, indexed by the edge counted from the first one where it has a frame.
 Environment: SIM_FRAMES (.npz of uint8 HxW arrays, in order), SIM_THRESHOLDS
 (space-separated), SIM_TIMING (sim/timing.py's Timing.as_dict as JSON), SIM_OUT
 (JSON written at the end), SIM_PROGRESS (rewritten with "pixels_in pixels"),
-SIM_GENERICS (the top's generics).
+SIM_GENERICS (the top's generics), SIM_BUDGET ("CELL K": BUDGET written with
+every frame's registers; unset: not written).
 """
 
 from __future__ import annotations
@@ -116,9 +117,17 @@ async def write(axil: AxiLiteMaster, offset: int, value: int) -> None:
     await axil.write(offset, value.to_bytes(4, "little"))
 
 
-async def configure(axil: AxiLiteMaster, img: np.ndarray, threshold: int) -> None:
+async def configure(
+    axil: AxiLiteMaster, img: np.ndarray, threshold: int, budget: tuple[int, int] | None
+) -> None:
+    """The frame's registers, in the fast engine's order (sim/verilator_harness.cpp)."""
     await write(axil, regs.WIDTH, img.shape[1])
     await write(axil, regs.HEIGHT, img.shape[0])
+    if budget is not None:
+        cell, per_cell = budget
+        await write(
+            axil, regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
+        )
     await write(axil, regs.THRESHOLD, threshold)
 
 
@@ -152,7 +161,9 @@ async def run_frames(dut):
     cocotb.start_soon(run.clock_edges())
     await ClockCycles(dut.aclk, 4)
 
-    await configure(axil, images[0], thresholds[0])
+    budget_env = os.environ.get("SIM_BUDGET", "")
+    budget = tuple(int(v) for v in budget_env.split()) if budget_env else None
+    await configure(axil, images[0], thresholds[0], budget)
     await RisingEdge(dut.aclk)
     # The source takes the frame at the next edge: pattern clock 0.
     run.start_ns = source.start_ns = get_sim_time("ns") + PERIOD_NS
@@ -161,7 +172,7 @@ async def run_frames(dut):
     for i in range(1, len(images)):
         # As the fast engine: once the previous frame's first line is in.
         await run.first_line_seen[i - 1].wait()
-        await configure(axil, images[i], thresholds[i])
+        await configure(axil, images[i], thresholds[i], budget)
         for line in video_lines(images[i], ppc):
             await source.send(line)
     await run.done.wait()

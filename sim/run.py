@@ -116,10 +116,15 @@ def build_size(shapes: Sequence[tuple[int, int]]) -> tuple[int, int]:
 
 
 def generics_for(
-    score: str, nms: str, ppc: int = 1, size: tuple[int, int] = (MAX_WIDTH, MAX_HEIGHT)
+    score: str,
+    nms: str,
+    ppc: int = 1,
+    size: tuple[int, int] = (MAX_WIDTH, MAX_HEIGHT),
+    budget: bool = False,
 ) -> dict[str, object]:
-    """The top's generics for the CLI's builds (PPC only when above 1, so that
-    the one-pixel builds keep their names)."""
+    """The top's generics for the CLI's builds (PPC only when above 1 and
+    MAX_PER_CELL = 15 only with `budget`, so that the other builds keep their
+    names)."""
     generics: dict[str, object] = {
         "MAX_WIDTH": size[0],
         "MAX_HEIGHT": size[1],
@@ -128,6 +133,8 @@ def generics_for(
     }
     if ppc != 1:
         generics["PPC"] = ppc
+    if budget:
+        generics["MAX_PER_CELL"] = 15
     return generics
 
 
@@ -142,22 +149,27 @@ def run_rtl(
     announce: Callable[[str], None] | None = None,
     generics: dict[str, object] | None = None,
     power_up_seed: int | None = None,
+    budget: tuple[int, int] | None = None,
 ) -> SimResult:
     """Simulate fastnms_axi on `frames` (image, threshold), sent back to back.
     `progress(pixels_in, pixels, seconds)` is called about once a second;
     `announce(text)` before a build of the fast engine. `generics` overrides
-    the build (default: MAX_WIDTH x MAX_HEIGHT with score and nms)."""
+    the build (default: MAX_WIDTH x MAX_HEIGHT with score and nms). `budget`
+    (cell, per_cell) is written to BUDGET with every frame's registers (the
+    build needs MAX_PER_CELL > 0: generics_for(..., budget=True))."""
     if not RTL.is_dir():
         raise SimError(f"the RTL is not beside {Path(__file__).parent} (needs the source tree)")
     if not frames:
         raise SimError("no frame to simulate")
-    generics = generics or generics_for(score, nms)
+    generics = generics or generics_for(score, nms, budget=budget is not None)
+    if budget is not None and not int(generics.get("MAX_PER_CELL", 0)):
+        raise SimError("a budget needs a build with the budget (MAX_PER_CELL > 0)")
     if engine == "verilator":
-        return _run_verilator(frames, generics, timing, progress, announce, power_up_seed)
+        return _run_verilator(frames, generics, timing, progress, announce, power_up_seed, budget)
     if engine == "cocotb":
         if timing.hblank or timing.vblank:
             raise SimError("blanking (hblank, vblank) needs the verilator engine")
-        return _run_cocotb(frames, generics, timing, progress)
+        return _run_cocotb(frames, generics, timing, progress, budget)
     raise SimError(f"unknown engine {engine!r}; choose from {', '.join(ENGINES)}")
 
 
@@ -179,7 +191,9 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
     ]
 
 
-def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) -> SimResult:
+def _run_verilator(
+    frames, generics, timing, progress, announce, power_up_seed, budget
+) -> SimResult:
     try:
         exe, build_seconds = verilator.build(generics, announce)
     except verilator.EngineError as e:
@@ -192,7 +206,7 @@ def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) 
 
     try:
         ppc = int(generics.get("PPC", 1))
-        raw = verilator.run(exe, frames, timing, report, power_up_seed, ppc)
+        raw = verilator.run(exe, frames, timing, report, power_up_seed, ppc, budget)
     except verilator.EngineError as e:
         raise SimError(f"the fast engine stopped: {e}") from None
     # The drivers send well-formed video: a malformed-frame flag or a frame
@@ -215,7 +229,7 @@ def _run_verilator(frames, generics, timing, progress, announce, power_up_seed) 
     )
 
 
-def _run_cocotb(frames, generics, timing, progress) -> SimResult:
+def _run_cocotb(frames, generics, timing, progress, budget) -> SimResult:
     name = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
     build_dir = BUILD / f"fastnms_axi-cli-{name}"
     build_dir.mkdir(parents=True, exist_ok=True)
@@ -244,6 +258,7 @@ def _run_cocotb(frames, generics, timing, progress) -> SimResult:
                         "SIM_TIMING": json.dumps(timing.as_dict()),
                         "SIM_OUT": str(out),
                         "SIM_PROGRESS": str(progress_file),
+                        "SIM_BUDGET": "" if budget is None else f"{budget[0]} {budget[1]}",
                     },
                     log_file=log,
                 )

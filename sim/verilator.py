@@ -212,14 +212,18 @@ def run(
     progress: Callable[[int, int], None] | None = None,
     power_up_seed: int | None = None,
     ppc: int = 1,
+    budget: tuple[int, int] | None = None,
 ) -> RawRun:
     """Send `frames` (image, threshold) back to back through the executable, in
-    beats of `ppc` pixels (the build's PPC generic). `power_up_seed` randomises
+    beats of `ppc` pixels (the build's PPC generic), with BUDGET = `budget` (cell,
+    per_cell) written for every frame when given. `power_up_seed` randomises
     the netlist's initial register and memory values."""
     with tempfile.TemporaryDirectory(dir=exe.parent) as tmp:
         job, pixels, records = Path(tmp, "job"), Path(tmp, "pixels"), Path(tmp, "records")
         lines = [f"seed {timing.seed}\n", f"hblank {timing.hblank}\n", f"vblank {timing.vblank}\n"]
         lines.append(f"ppc {ppc}\n")
+        if budget is not None:
+            lines.append(f"budget {budget[0]} {budget[1]}\n")
         lines += [timing.idle.job_line("idle"), timing.stall.job_line("stall")]
         with open(pixels, "wb") as f:
             for img, threshold in frames:

@@ -1,14 +1,15 @@
 // The fast simulation engine's driver: fastnms_axi as the netlist GHDL
 // synthesizes from rtl/, compiled by Verilator, driven clock by clock from C++
 // the way the cocotb bench drives it (sim/driver.py): reset, AXI4-Lite writes of
-// WIDTH, HEIGHT and THRESHOLD, AXI4-Stream video in, corner records out.
+// WIDTH, HEIGHT, THRESHOLD (and BUDGET), AXI4-Stream video in, corner records out.
 // sim/verilator.py builds it and reads what it writes.
 //
 //   fastnms_vsim JOB PIXELS RECORDS [+verilator+... options]
 //
 // JOB (text, one setting per line):
 //   seed N | idle rate P | idle bits 0110.. | stall rate P | stall bits ..
-//   hblank N | vblank N | ppc N | frame WIDTH HEIGHT THRESHOLD
+//   hblank N | vblank N | ppc N | budget CELL K | frame WIDTH HEIGHT THRESHOLD
+// (budget: BUDGET written with each frame's registers; none: not written)
 // PIXELS: the frames' pixels, raster order, one byte each, frame after frame;
 // they go in as beats of PPC pixels (the build's generic, `ppc` in the job;
 // default 1), pixel 0 of a beat in the low byte, as UG934 packs video.
@@ -81,6 +82,8 @@ int main(int argc, char** argv) {
   context->commandArgs(argc, argv);
 
   uint64_t seed = 1, hblank = 0, vblank = 0, ppc = 1;
+  bool budget = false;
+  unsigned budget_cell = 16, budget_k = 0;
   Pattern idle, stall;
   std::vector<FrameSpec> frames;
   {
@@ -93,6 +96,8 @@ int main(int argc, char** argv) {
       unsigned long long n;
       if (std::sscanf(line, "frame %u %u %u", &w, &h, &t) == 3) {
         frames.push_back({w, h, t});
+      } else if (std::sscanf(line, "budget %u %u", &budget_cell, &budget_k) == 2) {
+        budget = true;
       } else if (std::sscanf(line, "%31s %31s %399s", word, kind, value) == 3) {
         Pattern& p = std::strcmp(word, "idle") == 0 ? idle : stall;
         if (std::strcmp(kind, "rate") == 0) p.rate = std::atof(value);
@@ -201,6 +206,10 @@ int main(int argc, char** argv) {
   auto queue_config = [&](size_t i) {
     writes.push_back({FASTNMS_WIDTH_OFFSET, frames[i].width, configured});
     writes.push_back({FASTNMS_HEIGHT_OFFSET, frames[i].height, configured});
+    if (budget)
+      writes.push_back({FASTNMS_BUDGET_OFFSET,
+                        budget_cell << FASTNMS_BUDGET_CELL_SHIFT | budget_k << FASTNMS_BUDGET_PER_CELL_SHIFT,
+                        configured});
     writes.push_back({FASTNMS_THRESHOLD_OFFSET, frames[i].threshold, i + 1});
   };
   queue_config(0);

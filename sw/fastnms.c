@@ -235,6 +235,7 @@ int fastnms_probe(const struct fastnms_regs_io *io, struct fastnms_info *info)
         info->score = (uint8_t)FIELD(mode, MODE_SCORE);
         info->nms = (uint8_t)FIELD(mode, MODE_NMS);
         info->ppc = (uint8_t)FIELD(mode, MODE_PPC);
+        info->max_per_cell = (uint8_t)FIELD(build, BUILD_MAX_PER_CELL);
     }
     return FASTNMS_OK;
 }
@@ -254,6 +255,21 @@ int fastnms_configure(const struct fastnms_regs_io *io, uint32_t width, uint32_t
     wr(io, FASTNMS_WIDTH_OFFSET, width << FASTNMS_WIDTH_VALUE_SHIFT);
     wr(io, FASTNMS_HEIGHT_OFFSET, height << FASTNMS_HEIGHT_VALUE_SHIFT);
     wr(io, FASTNMS_THRESHOLD_OFFSET, threshold << FASTNMS_THRESHOLD_VALUE_SHIFT);
+    return FASTNMS_OK;
+}
+
+int fastnms_set_budget(const struct fastnms_regs_io *io, uint32_t cell, uint32_t per_cell)
+{
+    uint32_t build;
+
+    if (!usable(io))
+        return FASTNMS_ERR_ARG;
+    build = rd(io, FASTNMS_BUILD_OFFSET);
+    if (cell < 16u || cell > 256u || (cell & (cell - 1u)) != 0u ||
+        per_cell > FIELD(build, BUILD_MAX_PER_CELL))
+        return FASTNMS_ERR_RANGE;
+    wr(io, FASTNMS_BUDGET_OFFSET,
+       cell << FASTNMS_BUDGET_CELL_SHIFT | per_cell << FASTNMS_BUDGET_PER_CELL_SHIFT);
     return FASTNMS_OK;
 }
 

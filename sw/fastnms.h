@@ -148,6 +148,7 @@ struct fastnms_info {
     uint8_t score;               /* MODE.SCORE: FASTNMS_MODE_SCORE_OPENCV or _SAD */
     uint8_t nms;                 /* MODE.NMS: FASTNMS_MODE_NMS_NONE, _3X3, _REGION4, _REGION8 */
     uint8_t ppc;                 /* MODE.PPC: pixels per beat of the video (1, 2, 4) */
+    uint8_t max_per_cell;        /* BUILD.MAX_PER_CELL: largest budget K (0: no budget) */
 };
 
 struct fastnms_counters {
@@ -161,11 +162,19 @@ struct fastnms_counters {
  * fastnms_regs.h); fill *info (may be NULL) from VERSION, MAX_SIZE, BUILD, MODE. */
 int fastnms_probe(const struct fastnms_regs_io *io, struct fastnms_info *info);
 
-/* Write WIDTH, HEIGHT and THRESHOLD (taken by the core at the next start of
- * frame). FASTNMS_ERR_RANGE, and nothing written, unless 7 <= width <=
+/* Write WIDTH, HEIGHT and THRESHOLD. A frame takes the values written before
+ * its first pixel is accepted: these apply from the first frame that starts
+ * after this call returns (the IP never holds the video for them).
+ * FASTNMS_ERR_RANGE, and nothing written, unless 7 <= width <=
  * MAX_SIZE.WIDTH, 7 <= height <= MAX_SIZE.HEIGHT and threshold <= 255. */
 int fastnms_configure(const struct fastnms_regs_io *io, uint32_t width, uint32_t height,
                       uint32_t threshold);
+
+/* Write BUDGET: at most `per_cell` records per `cell` x `cell` grid cell (the
+ * best scores; per_cell 0: every record), applied like fastnms_configure.
+ * FASTNMS_ERR_RANGE, and nothing written, unless cell is 16, 32, 64, 128 or 256
+ * and per_cell <= BUILD.MAX_PER_CELL (0 in a build without the budget). */
+int fastnms_set_budget(const struct fastnms_regs_io *io, uint32_t cell, uint32_t per_cell);
 
 /* CTRL, read-modify-write of one bit, the other CTRL fields kept (reserved bits
  * written as 0). */

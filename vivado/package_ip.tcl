@@ -227,6 +227,9 @@ fastnms::gui_list $core PPC {1 2 4}
 fastnms::gui_param $core CORNER_FIFO_DEPTH {Corner FIFO depth} \
     {Corner records buffered ahead of m_axis_corners.}
 fastnms::gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8192 16384}
+fastnms::gui_param $core MAX_PER_CELL {Keypoint budget (largest K)} \
+    {0: no budget. 1 .. 15: keep at most K records per grid cell (register BUDGET: K and the cell size, 16 .. 256), the best scores; needs NMS 3x3 or none (an elaboration assert says so otherwise). At 15 it costs 26 BRAM18.}
+fastnms::gui_range $core MAX_PER_CELL 0 15
 
 # ---- save -------------------------------------------------------------------
 ipx::create_xgui_files $core

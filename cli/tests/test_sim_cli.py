@@ -11,6 +11,7 @@ import cv2
 import numpy as np
 import pytest
 from fastnms import main as cli
+from fastnms.golden.budget import cell_budget
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import detect
 from fastnms.sim import run as sim
@@ -147,6 +148,10 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["EMPTYDIR"], "a directory without image files"),
         (["--ppc", "4", "--nms", "region4", "IMG"], "--ppc 4 needs --nms 3x3 or none"),
         (["--ppc", "4", "IMG60"], "not a multiple of 4"),
+        (["--cell", "32", "IMG"], "--cell and --per-cell go together"),
+        (["--cell", "32", "--per-cell", "2", "--nms", "region8", "IMG"], "need --nms 3x3 or none"),
+        (["--cell", "48", "--per-cell", "2", "IMG"], "cell must be one of"),
+        (["--cell", "32", "--per-cell", "16", "IMG"], "per-cell must be an integer in 1..15"),
     ],
 )
 def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
@@ -158,6 +163,33 @@ def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
     status, _, err = run(["sim", *[subst.get(a, a) for a in argv]], capsys)
     assert status == 2
     assert err.startswith("fastnms: error: ") and message in err and err.count("\n") == 1
+
+
+def test_sim_and_compare_with_a_budget(photo: Path, tmp_path: Path, capsys):
+    """--cell 16 --per-cell 1 (the top built with the budget): the golden model's
+    budget (the CSV sorted by y then x, as always), the same records and clocks from
+    both engines with idles and stalls; `compare` says identical, against the golden
+    model and OpenCV, each with the budget."""
+    img = cv2.imread(str(photo), cv2.IMREAD_GRAYSCALE)
+    want = cell_budget(detect(img, 10), 16, 1).tolist()
+    assert 0 < len(want) < len(detect(img, 10))
+    got = {}
+    for engine in ("verilator", "cocotb"):
+        out = tmp_path / f"{engine}.json"
+        argv = ["sim", str(photo), "-t", "10", "--cell", "16", "--per-cell", "1"]
+        argv += ["--engine", engine, "--idle", "0.2", "--stall", "0.3", "--seed", "3"]
+        assert cli.main([*argv, "--json", str(out), "--csv", f"{out}.csv"]) == 0
+        assert [list(r) for r in read_csv(Path(f"{out}.csv"))] == want
+        summary = json.loads(out.read_text())
+        assert (summary["cell"], summary["per_cell"]) == (16, 1)
+        got[engine] = (summary["corners"], summary["cycles"], summary["input_stalls"])
+    assert got["verilator"] == got["cocotb"]
+    capsys.readouterr()
+    argv = ["compare", str(photo), "-t", "10", "--cell", "16", "--per-cell", "1"]
+    assert cli.main(argv) == 0
+    out = capsys.readouterr().out
+    assert "rtl vs golden model + budget: identical" in out
+    assert "FAST + budget: identical" in out
 
 
 def test_missing_simulator_is_named(photo: Path, capsys, monkeypatch):

@@ -34,6 +34,7 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from fastnms.golden.budget import hardware_order
 from fastnms.golden.model import NMS_MODES, SCORES, detect
 from fastnms.sim import regs, verilator
 from fastnms.sim.ghdl import ghdl_version, tool_version
@@ -319,6 +320,49 @@ def derive(raw: dict, score: str, nms: str, generics: dict, check_seconds: float
     }
 
 
+BUDGETS = [(64, 4), (32, 2), (16, 1)]
+
+
+def budget_bench(
+    images: list[np.ndarray], threshold: int, width: int, height: int, check: bool
+) -> dict:
+    """opencv + 3x3 with the keypoint budget (MAX_PER_CELL 15) on the bench frames at
+    each of BUDGETS: keypoints per frame, clocks per pixel, latency, input stalls;
+    every frame's records against the golden model's budget in the block's order."""
+    generics = {**bench_generics("opencv", "3x3", width, height), "MAX_PER_CELL": 15}
+    build = build_engines([generics], 1)[0]
+    rows = []
+    for budget in BUDGETS:
+        frames = [(img, threshold) for img in images]
+        try:
+            result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=budget)
+        except SimError as e:
+            raise BenchError(f"budget {budget}: {e}") from None
+        if status_errors(result.status):
+            raise BenchError(f"budget {budget}: STATUS reports {status_errors(result.status)}")
+        for i, (img, f) in enumerate(zip(images, result.frames, strict=True)):
+            want = hardware_order(detect(img, threshold), *budget)
+            words = [int(w) for w in f.words if not regs.REC_EMPTY.get(int(w))]
+            got = [(regs.REC_X.get(w), regs.REC_Y.get(w), regs.REC_SCORE.get(w)) for w in words]
+            if check and got != [tuple(r) for r in want.tolist()]:
+                raise BenchError(f"budget {budget}, frame {i}: records differ from the golden's")
+        fr = result.frames
+        rows.append(
+            {
+                "cell": budget[0],
+                "per_cell": budget[1],
+                "cells": -(-width // budget[0]) * -(-height // budget[0]),
+                "corners": [len(f.records) for f in fr],
+                "input_clocks_per_pixel": (fr[-1].last_pixel - fr[0].first_pixel + 1)
+                / sum(f.width * f.height for f in fr),
+                "input_stalls": result.input_stalls,
+                "latency_clocks": [f.last_record - f.last_pixel for f in fr],
+                "checked": check,
+            }
+        )
+    return {"generics": generics, "build_seconds": build, "rows": rows}
+
+
 def fast_engine_speed(sims: list[dict]) -> dict:
     """The fast engine over all the bench's runs: pixels and clocks (first pixel
     to last record) over the simulations' wall seconds."""
@@ -588,6 +632,16 @@ def run(args: argparse.Namespace) -> dict:
             f"{uhd['frame_interval_clocks']} clocks, latency {uhd['latency_clocks']} clocks"
         )
 
+    t = time.perf_counter()
+    budget = budget_bench(images, args.threshold, args.width, args.height, not args.no_check)
+    phases["budget"] = time.perf_counter() - t
+    for row in budget["rows"]:
+        print(
+            f"bench: budget {row['per_cell']} per {row['cell']}x{row['cell']} cell: "
+            f"corners {row['corners']}, input {row['input_clocks_per_pixel']:.5f} clocks/pixel, "
+            f"{row['input_stalls']} input stalls, latency {row['latency_clocks']} clocks"
+        )
+
     memory = [
         {"config": f"{s}-{n}-{args.width}", **region_memory(args.width, args.height, SCORE_BITS[s])}
         for s, n in MEMORY_CONFIGS
@@ -607,6 +661,7 @@ def run(args: argparse.Namespace) -> dict:
         "region_memory": memory,
         "software": software,
         "orb": orb,
+        "budget": budget,
         "machine": {
             **machine(),
             "ghdl": ghdl_version(),

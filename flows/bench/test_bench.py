@@ -52,3 +52,20 @@ def test_bench_fails_on_a_golden_difference(frames, monkeypatch):
     monkeypatch.setattr(bench, "detect", one_corner_short)
     with pytest.raises(bench.BenchError, match="frame 0: the RTL gave"):
         simulate(frames)
+
+
+def test_budget_bench(frames):
+    """The budget rows of `make bench`: each budget's frames equal the golden model's
+    budget in the block's order (checked inside, a difference raises), at most
+    cells x K keypoints per frame, no input stall, and the report's table."""
+    from flows.report.report import budget_lines
+
+    result = bench.budget_bench(frames, 10, W, H, True)
+    assert [(r["cell"], r["per_cell"]) for r in result["rows"]] == bench.BUDGETS
+    for r in result["rows"]:
+        assert r["checked"] and r["input_stalls"] == 0
+        assert all(0 < c <= r["cells"] * r["per_cell"] for c in r["corners"]), r
+        assert r["input_clocks_per_pixel"] == 1.0
+    lines = budget_lines(result, W, H)
+    assert lines[0] == "### The keypoint budget in the top"
+    assert sum(line.startswith("| 4 per 64x64") for line in lines) == 1

@@ -941,6 +941,7 @@ def bench_section(bench: dict) -> str:
     )
     out.append("")
     out += orb_lines(bench.get("orb"))
+    out += budget_lines(bench.get("budget"), w, h)
     out.append("### How long")
     out.append("")
     out.append(f"- Source: {source_text(bench.get('source'))}.")
@@ -949,6 +950,7 @@ def bench_section(bench: dict) -> str:
     names = {
         "software": "software timings",
         "orb": "ORB against cv2.ORB",
+        "budget": "the keypoint budget",
         "builds": "fast-engine builds",
         "simulations": "fast-engine simulations and golden checks",
         "cocotb": "the cocotb run",
@@ -959,6 +961,47 @@ def bench_section(bench: dict) -> str:
         + (f" ({spent})." if spent else ".")
     )
     return "\n".join(out)
+
+
+def budget_lines(budget: dict | None, w: int, h: int) -> list[str]:
+    """opencv + 3x3 with the keypoint budget in the top, on the bench frames."""
+    if not budget:
+        return []
+    out = ["### The keypoint budget in the top", ""]
+    rows = [
+        [
+            f"{r['per_cell']} per {r['cell']}x{r['cell']}",
+            num(r["cells"] * r["per_cell"]),
+            ", ".join(num(c) for c in r["corners"]),
+            f"{r['input_clocks_per_pixel']:.5f}",
+            num(r["input_stalls"]),
+            ", ".join(num(c) for c in r["latency_clocks"]),
+            "yes" if r["checked"] else "not checked",
+        ]
+        for r in budget["rows"]
+    ]
+    out += table(
+        [
+            "budget",
+            "bound (cells x K)",
+            "keypoints per frame",
+            "input clocks/pixel",
+            "input stalls",
+            "latency (clocks)",
+            "vs golden",
+        ],
+        rows,
+    )
+    out.append("")
+    out.append(
+        f"`opencv` + `3x3` at {w}x{h}, `MAX_PER_CELL` 15, the bench frames back to back "
+        "with BUDGET written for each (fast engine). Latency: from a frame's last pixel in "
+        "to its last record out. vs golden: every frame's records equal "
+        "`fastnms.golden.budget.hardware_order` (the golden model's budget in the block's "
+        "order). Without the budget, the keypoints per frame are in the table above."
+    )
+    out.append("")
+    return out
 
 
 def orb_lines(orb: dict | None) -> list[str]:

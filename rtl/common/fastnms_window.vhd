@@ -17,7 +17,8 @@
 -- clock. (PPC = 1: one pixel per beat, LB = R.)
 --
 -- Geometry comes from cfg_width/cfg_height, sampled when the start-of-frame
--- beat is accepted (they must be stable for the 2 clocks before). in_sof
+-- beat is accepted (they must not change in the 3 clock periods before the
+-- edge that accepts it: two register steps derive the limits). in_sof
 -- starts a frame; in_eol is only checked. Malformed input never stalls the
 -- block:
 --   err_line  pulses when in_eol is missing on the last beat of a line or

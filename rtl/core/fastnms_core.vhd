@@ -56,8 +56,8 @@ entity fastnms_core is
     cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     cfg_threshold : in    unsigned(7 downto 0);
-    cfg_cell_log  : in    unsigned(2 downto 0) := (others => '0');
-    cfg_per_cell  : in    unsigned(3 downto 0) := (others => '0');
+    cfg_cell_log  : in    unsigned(2 downto 0);
+    cfg_per_cell  : in    unsigned(3 downto 0);
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
     in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
@@ -106,8 +106,8 @@ architecture rtl of fastnms_core is
   signal d_width  : unsigned(cfg_width'range);
   signal d_height : unsigned(cfg_height'range);
   -- The budget's configuration, through the detector with the frame.
-  signal cfg_tag  : std_logic_vector(6 downto 0);
-  signal d_tag    : std_logic_vector(6 downto 0);
+  signal cfg_tag : std_logic_vector(6 downto 0);
+  signal d_tag   : std_logic_vector(6 downto 0);
   -- The NMS's output, before the budget.
   signal s_valid : std_logic;
   signal s_ready : std_logic;
@@ -139,7 +139,8 @@ begin
     report "fastnms_core: PPC must be 1, 2 or 4"
     severity failure;
   assert MAX_PER_CELL = 0 or NMS = "3x3" or NMS = "none"
-    report "fastnms_core: the budget (MAX_PER_CELL > 0) takes records in raster order: NMS ""3x3"" or ""none"" only"
+    report "fastnms_core: the budget (MAX_PER_CELL > 0) takes records in raster order: " &
+           "NMS ""3x3"" or ""none"" only"
     severity failure;
   assert MAX_PER_CELL <= 15
     report "fastnms_core: MAX_PER_CELL must be 0 .. 15"
@@ -304,8 +305,10 @@ begin
     -- the frame's first pixel (d_tag), queued at the frame's first score
     -- beat, consumed at the frame's end-of-frame record. Every frame the
     -- detector emits gives one end-of-frame record, so queue and frames stay
-    -- in step; at most two frames are between the detector's output and the
-    -- NMS's (asserted), the queue holds four.
+    -- in step. Frames between the detector's output and the budget's input:
+    -- two, a few more when frames without records pile up behind a stalled
+    -- output; the queue has room for 6 at least (a simulation assertion
+    -- checks that it never refuses one).
     signal q_valid : std_logic;
     signal q_ready : std_logic;
     signal q_push  : std_logic;
@@ -319,7 +322,7 @@ begin
 
     config_queue : entity work.fastnms_fifo
       generic map (
-        DEPTH => 4,
+        DEPTH => 8,
         WIDTH => d_tag'length,
         STYLE => "distributed"
       )
@@ -381,7 +384,8 @@ begin
       end if;
 
     end process queue_check;
-    -- pragma translate_on
+
+  -- pragma translate_on
 
   end generate with_budget;
 

@@ -21,7 +21,8 @@
 -- in_eol on the last beat of each line. cfg_width (7..MAX_WIDTH, a multiple
 -- of PPC; see fastnms_window for the narrowest legal width) and
 -- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame beat and
--- must be stable for the two clocks before it is accepted; cfg_threshold
+-- must not change in the 3 clock periods before the edge that accepts it
+-- (fastnms_window); cfg_threshold
 -- (0..255) and cfg_tag (any per-frame word for the blocks after the
 -- detector) are sampled when the start-of-frame pixel is accepted. As in
 -- AXI4-Stream, an offered beat stays (in_valid high, data stable) until it is
@@ -59,7 +60,7 @@ entity fastnms_fast_detector is
     cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     cfg_threshold : in    unsigned(7 downto 0);
-    cfg_tag       : in    std_logic_vector(TAG_BITS - 1 downto 0) := (others => '0');
+    cfg_tag       : in    std_logic_vector(TAG_BITS - 1 downto 0);
     in_valid      : in    std_logic;
     in_ready      : out   std_logic;
     in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);

@@ -513,20 +513,20 @@ begin
       DATA_WIDTH => PPC * 8
     )
     port map (
-      clk         => aclk,
-      rst         => rst,
-      soft        => soft_busy,
-      enable      => enable,
-      in_valid    => g_valid,
-      in_ready    => g_ready,
-      in_data     => g_out(PPC * 8 - 1 downto 0),
-      in_sof      => g_out(PPC * 8 + 1),
-      in_eol      => g_out(PPC * 8),
-      out_valid   => c_valid,
-      out_ready   => c_ready,
-      out_data    => c_data,
-      out_sof     => c_sof,
-      out_eol     => c_eol
+      clk       => aclk,
+      rst       => rst,
+      soft      => soft_busy,
+      enable    => enable,
+      in_valid  => g_valid,
+      in_ready  => g_ready,
+      in_data   => g_out(PPC * 8 - 1 downto 0),
+      in_sof    => g_out(PPC * 8 + 1),
+      in_eol    => g_out(PPC * 8),
+      out_valid => c_valid,
+      out_ready => c_ready,
+      out_data  => c_data,
+      out_sof   => c_sof,
+      out_eol   => c_eol
     );
 
   check : entity work.fastnms_video_check

@@ -531,7 +531,10 @@ begin
     REG_DROPPED      => std_logic_vector(dropped),
     REG_INPUT_STALLS => std_logic_vector(stalls),
     REG_BUDGET       => place(std_logic_vector(k_shadow), BUDGET_PER_CELL_LSB) or
-    place(std_logic_vector(shift_left(to_unsigned(16, BUDGET_CELL_WIDTH), to_integer(cell_shadow))), BUDGET_CELL_LSB)
+    place(std_logic_vector(shift_left(to_unsigned(16,
+                                                   BUDGET_CELL_WIDTH),
+                                       to_integer(cell_shadow))),
+           BUDGET_CELL_LSB)
   );
 
 end architecture rtl;

@@ -27,20 +27,20 @@ entity fastnms_video_gate is
     DATA_WIDTH : positive := 8
   );
   port (
-    clk         : in    std_logic;
-    rst         : in    std_logic;
-    soft        : in    std_logic;
-    enable      : in    std_logic;
-    in_valid    : in    std_logic;
-    in_ready    : out   std_logic;
-    in_data     : in    std_logic_vector(DATA_WIDTH - 1 downto 0);
-    in_sof      : in    std_logic;
-    in_eol      : in    std_logic;
-    out_valid   : out   std_logic;
-    out_ready   : in    std_logic;
-    out_data    : out   std_logic_vector(DATA_WIDTH - 1 downto 0);
-    out_sof     : out   std_logic;
-    out_eol     : out   std_logic
+    clk       : in    std_logic;
+    rst       : in    std_logic;
+    soft      : in    std_logic;
+    enable    : in    std_logic;
+    in_valid  : in    std_logic;
+    in_ready  : out   std_logic;
+    in_data   : in    std_logic_vector(DATA_WIDTH - 1 downto 0);
+    in_sof    : in    std_logic;
+    in_eol    : in    std_logic;
+    out_valid : out   std_logic;
+    out_ready : in    std_logic;
+    out_data  : out   std_logic_vector(DATA_WIDTH - 1 downto 0);
+    out_sof   : out   std_logic;
+    out_eol   : out   std_logic
   );
 end entity fastnms_video_gate;
 

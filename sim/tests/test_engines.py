@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from fastnms.golden.budget import hardware_order
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.sim import regs
 from fastnms.sim.run import SimResult, check_size, generics_for, run_rtl
 from fastnms.sim.timing import Pattern, Timing
 from fastnms.testing import images as testimages
@@ -45,6 +47,38 @@ def assert_same_run(a: SimResult, b: SimResult) -> None:
     for fa, fb in zip(a.frames, b.frames, strict=True):
         assert np.array_equal(fa.records, fb.records)
         assert (fa.cycles, fa.input_stalls) == (fb.cycles, fb.input_stalls)
+
+
+def emitted(words: np.ndarray) -> list[tuple[int, int, int]]:
+    """A frame's records in the order the IP emitted them (EMPTY left out)."""
+    out = []
+    for w in (int(v) for v in words):
+        if not regs.REC_EMPTY.get(w):
+            out.append((regs.REC_X.get(w), regs.REC_Y.get(w), regs.REC_SCORE.get(w)))
+    return out
+
+
+@pytest.mark.parametrize("ppc", [1, 4])
+def test_budget_at_full_hd(ppc: int, rng, seed):
+    """The keypoint budget in the top at 1920x1080 (MAX_PER_CELL 15, opencv + 3x3),
+    PPC 1 and 4: a photograph at t = 20 and noise at t = 0 at full width (the heaviest
+    record stream), at CELL 16 K 15, CELL 64 K 4 and CELL 256 K 1, each frame the
+    golden model's budget in the block's order (a cell row at a time, cells left to
+    right, best first); the input never waits, and frames go in W x H / PPC clocks
+    apart."""
+    photo = testimages.cover(testimages.crop(testimages.real_images()[1], 480, 270), 1920, 1080)
+    frames = [(photo, 20), (testimages.noise(rng, 1920, 64), 0), (photo, 10)]
+    generics = generics_for("opencv", "3x3", ppc, budget=True)
+    for budget in [(16, 15), (64, 4), (256, 1)]:
+        result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=budget)
+        for i, ((img, t), f) in enumerate(zip(frames, result.frames, strict=True)):
+            want = [tuple(r) for r in hardware_order(detect(img, t), *budget).tolist()]
+            assert emitted(f.words) == want, f"budget {budget}, frame {i} (seed {seed})"
+            assert f.input_stalls == 0, f"budget {budget}, frame {i}: {f.input_stalls} stalls"
+        starts = [f.first_pixel for f in result.frames]
+        sizes = [img.size // ppc for img, _ in frames]
+        assert np.diff(starts).tolist() == sizes[:-1], f"budget {budget}: input waited"
+        print(f"PPC {ppc}, budget {budget}: {[len(f.records) for f in result.frames]} records")
 
 
 @pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=IDS)

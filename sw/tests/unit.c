@@ -42,7 +42,7 @@ static uint32_t sticky(void)
 
 static bool valid_offset(uint32_t offset)
 {
-    return offset % 4u == 0u && offset <= FASTNMS_INPUT_STALLS_OFFSET;
+    return offset % 4u == 0u && offset <= FASTNMS_BUDGET_OFFSET;
 }
 
 static uint32_t fake_read(void *ctx, uint32_t offset)
@@ -99,7 +99,8 @@ static void fake_init(struct fake *f, struct fastnms_regs_io *io)
                                           FASTNMS_VERSION_MINOR_RESET << 8 | 3u;
     f->reg[FASTNMS_CTRL_OFFSET / 4u] = FASTNMS_CTRL_ENABLE_MASK;
     f->reg[FASTNMS_MAX_SIZE_OFFSET / 4u] = 480u << FASTNMS_MAX_SIZE_HEIGHT_SHIFT | 640u;
-    f->reg[FASTNMS_BUILD_OFFSET / 4u] = FASTNMS_BUILD_SCORE_VIDEO_MASK | 512u;
+    f->reg[FASTNMS_BUILD_OFFSET / 4u] =
+        FASTNMS_BUILD_SCORE_VIDEO_MASK | 4u << FASTNMS_BUILD_MAX_PER_CELL_SHIFT | 512u;
     f->reg[FASTNMS_MODE_OFFSET / 4u] = FASTNMS_MODE_NMS_REGION4 << FASTNMS_MODE_NMS_SHIFT |
                                        FASTNMS_MODE_SCORE_OPENCV | 4u << FASTNMS_MODE_PPC_SHIFT;
     f->reset_reads = 3;
@@ -129,7 +130,7 @@ static void test_probe(void)
     CHECK(info.max_width == 640u && info.max_height == 480u);
     CHECK(info.fifo_depth == 512u && info.score_video);
     CHECK(info.score == FASTNMS_MODE_SCORE_OPENCV && info.nms == FASTNMS_MODE_NMS_REGION4);
-    CHECK(info.ppc == 4u);
+    CHECK(info.ppc == 4u && info.max_per_cell == 4u);
     CHECK(f.writes == 0u);
     CHECK(fastnms_probe(&io, NULL) == FASTNMS_OK);
 
@@ -141,6 +142,33 @@ static void test_probe(void)
     f.reg[FASTNMS_VERSION_OFFSET / 4u] = (FASTNMS_VERSION_MAJOR_RESET + 1u) << 16 |
                                          FASTNMS_VERSION_MINOR_RESET << 8;
     CHECK(fastnms_probe(&io, &info) == FASTNMS_ERR_VERSION);
+    CHECK(f.bad_accesses == 0u);
+}
+
+static void test_budget(void)
+{
+    struct fake f;
+    struct fastnms_regs_io io;
+    uint32_t cell;
+
+    fake_init(&f, &io); /* BUILD.MAX_PER_CELL = 4 */
+    for (cell = 16u; cell <= 256u; cell *= 2u) {
+        CHECK(fastnms_set_budget(&io, cell, 4u) == FASTNMS_OK);
+        CHECK(reg(&f, FASTNMS_BUDGET_OFFSET) == (cell << 16 | 4u));
+    }
+    CHECK(fastnms_set_budget(&io, 16u, 0u) == FASTNMS_OK);
+    CHECK(reg(&f, FASTNMS_BUDGET_OFFSET) == 16u << 16);
+    f.writes = 0;
+    CHECK(fastnms_set_budget(&io, 16u, 5u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_budget(&io, 8u, 1u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_budget(&io, 48u, 1u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_budget(&io, 512u, 1u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_budget(&io, 0u, 1u) == FASTNMS_ERR_RANGE);
+    CHECK(f.writes == 0u);
+    /* A build without the budget takes only K = 0. */
+    f.reg[FASTNMS_BUILD_OFFSET / 4u] = 512u;
+    CHECK(fastnms_set_budget(&io, 64u, 1u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_budget(&io, 64u, 0u) == FASTNMS_OK);
     CHECK(f.bad_accesses == 0u);
 }
 
@@ -336,6 +364,7 @@ int main(void)
 {
     test_probe();
     test_configure();
+    test_budget();
     test_ctrl();
     test_soft_reset();
     test_status_and_counters();

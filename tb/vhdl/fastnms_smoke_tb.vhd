@@ -99,6 +99,8 @@ begin
       cfg_width     => cfg_width,
       cfg_height    => cfg_height,
       cfg_threshold => cfg_threshold,
+      cfg_cell_log  => (others => '0'),
+      cfg_per_cell  => (others => '0'),
       in_valid      => in_valid,
       in_ready      => in_ready,
       in_data       => in_data,
