@@ -50,6 +50,7 @@ LOW_BGR = (0, 0, 128)
 HIGH_BGR = (0, 255, 255)
 BOX_HALF = 3  # 7x7 outline, the size of the FAST circle
 ORIENTATION_LENGTH = PATCH_SIZE // 2  # the orientation line reaches the patch's rim
+GRID_COLOUR = (160, 90, 0)  # BGR: the budget's cells, a dim blue under the boxes
 
 
 class UsageError(Exception):
@@ -223,10 +224,22 @@ def score_colours(scores: np.ndarray) -> np.ndarray:
     return np.rint(low + frac[:, None] * (high - low)).astype(np.uint8)
 
 
-def overlay(img: np.ndarray, records: np.ndarray, angles: np.ndarray | None = None) -> np.ndarray:
-    """The grey image as BGR with a 7x7 outline around each corner, coloured by score, and
-    with angles (degrees, y down) a line from each corner along its orientation."""
+def overlay(
+    img: np.ndarray,
+    records: np.ndarray,
+    angles: np.ndarray | None = None,
+    cell: int | None = None,
+) -> np.ndarray:
+    """The grey image as BGR with a 7x7 outline around each corner, coloured by score, with
+    angles (degrees, y down) a line from each corner along its orientation, and with `cell`
+    the budget's grid in blue."""
     canvas = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR)
+    if cell:
+        h, w = img.shape
+        for x in range(cell, w, cell):
+            cv2.line(canvas, (x, 0), (x, h - 1), GRID_COLOUR, 1)
+        for y in range(cell, h, cell):
+            cv2.line(canvas, (0, y), (w - 1, y), GRID_COLOUR, 1)
     if records.shape[0] == 0:
         return canvas
     colours = score_colours(records[:, 2])
@@ -507,7 +520,8 @@ def write_outputs(
             if args.csv:
                 out.write(args.csv, table)
             if args.png:
-                out.write(args.png, png_bytes(overlay(img, records, angles)))
+                cell = args.cell if getattr(args, "per_cell", None) else None
+                out.write(args.png, png_bytes(overlay(img, records, angles, cell)))
             for path, data in extra:
                 out.write(path, data)
     except OSError as e:

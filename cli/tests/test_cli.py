@@ -409,6 +409,20 @@ def test_golden_budget(textured_image, tmp_path: Path, capsys, orb: bool):
     assert rows == want.tolist() and 0 < len(rows) < len(detect(img, 5))
 
 
+def test_budget_png_draws_the_grid(textured_image, tmp_path: Path, capsys):
+    """With a budget the PNG shows the cells: blue lines every CELL pixels, none between."""
+    path, img = textured_image
+    out_png = tmp_path / "b.png"
+    argv = ["golden", str(path), "-t", "250", "--cell", "16", "--per-cell", "1"]
+    status, _, err = run([*argv, "--png", str(out_png)], capsys)
+    assert (status, err) == (0, "")
+    canvas = cv2.imread(str(out_png))
+    grey = canvas[:, :, 0] == canvas[:, :, 2]
+    h, w = img.shape
+    for x in range(w):
+        assert not grey[:, x].any() if x and x % 16 == 0 else grey[1:15, x].all(), x
+
+
 @pytest.mark.parametrize(
     "bad",
     [
