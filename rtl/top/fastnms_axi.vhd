@@ -1,11 +1,11 @@
 -- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
 -- out, optional per-pixel score video out, AXI4-Lite control. See docs/fastnms_axi.md.
 --
---   s_axis_video ─► skid ─► skid ─► gate ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
---                                    │  ▲        │  └ tap ─► skid ─► (sat) ─► m_axis_score
---                           check ◄──┘  │        │
+--   s_axis_video ─► skid ─► gate ─► skid ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
+--                                     │          │  └ tap ─► skid ─► (sat) ─► m_axis_score
+--                           check ◄──┘
 --                             │   s_axi_ctrl ─► regs ─► interrupt
---                             └────────────────►
+--                             └─────► (errors)
 --
 -- The entity declaration is VHDL-93 (std_logic ports, plain generics) for
 -- Vivado's IP packager; the interface attributes sit in the entity's
@@ -239,9 +239,12 @@ architecture rtl of fastnms_axi is
   signal v_tready   : std_logic;
   signal v_tvalid   : std_logic;
   signal v_ready    : std_logic;
-  signal g_valid    : std_logic;
+  signal g_valid    : std_logic; -- out of the gate
   signal g_ready    : std_logic;
-  signal g_out      : std_logic_vector(PPC * 8 + 1 downto 0);
+  signal g_data     : std_logic_vector(PPC * 8 - 1 downto 0);
+  signal g_sof      : std_logic;
+  signal g_eol      : std_logic;
+  signal c_beat     : std_logic_vector(PPC * 8 + 1 downto 0);
   signal c_valid    : std_logic; -- into the core
   signal c_ready    : std_logic;
   signal c_data     : std_logic_vector(PPC * 8 - 1 downto 0);
@@ -467,7 +470,7 @@ begin
   s_axis_video_tready <= v_tready;
   -- A frame's configuration: the registers' values when its first pixel is
   -- accepted here. That pixel reaches the core three clocks later at the
-  -- earliest (three skid buffers), as the core asks (its window generator
+  -- earliest (three buffers), as the core asks (its window generator
   -- derives the frame's limits from the configuration in two register
   -- steps); the frame before has taken its own values with its first pixel.
   cfg_apply <= v_tvalid and v_tready and s_axis_video_tuser;
@@ -491,23 +494,6 @@ begin
       out_data  => v_out
     );
 
-  -- The clock the configuration needs (above), without holding the input.
-  config_delay : entity work.fastnms_skid_buffer
-    generic map (
-      WIDTH     => PPC * 8 + 2,
-      PING_PONG => true
-    )
-    port map (
-      clk       => aclk,
-      rst       => rst,
-      in_valid  => v_valid,
-      in_ready  => v_ready,
-      in_data   => v_out,
-      out_valid => g_valid,
-      out_ready => g_ready,
-      out_data  => g_out
-    );
-
   gate : entity work.fastnms_video_gate
     generic map (
       DATA_WIDTH => PPC * 8
@@ -517,17 +503,41 @@ begin
       rst       => rst,
       soft      => soft_busy,
       enable    => enable,
+      in_valid  => v_valid,
+      in_ready  => v_ready,
+      in_data   => v_out(PPC * 8 - 1 downto 0),
+      in_sof    => v_out(PPC * 8 + 1),
+      in_eol    => v_out(PPC * 8),
+      out_valid => g_valid,
+      out_ready => g_ready,
+      out_data  => g_data,
+      out_sof   => g_sof,
+      out_eol   => g_eol
+    );
+
+  -- The clock the configuration needs (above), without holding the input;
+  -- after the gate, whose output buffer's ready is a register, so that no
+  -- ready passes through two buffers in one clock. Cleared by a soft reset
+  -- like the gate's output.
+  config_delay : entity work.fastnms_skid_buffer
+    generic map (
+      WIDTH     => PPC * 8 + 2,
+      PING_PONG => true
+    )
+    port map (
+      clk       => aclk,
+      rst       => pipe_rst,
       in_valid  => g_valid,
       in_ready  => g_ready,
-      in_data   => g_out(PPC * 8 - 1 downto 0),
-      in_sof    => g_out(PPC * 8 + 1),
-      in_eol    => g_out(PPC * 8),
+      in_data   => g_sof & g_eol & g_data,
       out_valid => c_valid,
       out_ready => c_ready,
-      out_data  => c_data,
-      out_sof   => c_sof,
-      out_eol   => c_eol
+      out_data  => c_beat
     );
+
+  c_sof  <= c_beat(PPC * 8 + 1);
+  c_eol  <= c_beat(PPC * 8);
+  c_data <= c_beat(PPC * 8 - 1 downto 0);
 
   check : entity work.fastnms_video_check
     generic map (
