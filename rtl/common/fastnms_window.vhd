@@ -205,6 +205,7 @@ architecture rtl of fastnms_window is
   signal beat_y     : y_t;
   signal out_x_last : std_logic;
   signal out_y_last : std_logic;
+  signal y_at_last  : std_logic;                          -- beat_y = H - 2, a clock late
   signal out_last   : std_logic;                          -- out_x_last and out_y_last (only in the flush)
   signal out_x_in   : std_logic_vector(PPC - 1 downto 0); -- per pixel: R <= x <= W - 1 - R
   signal out_y_in   : std_logic;                          -- R <= beat_y <= H - 1 - R
@@ -537,6 +538,15 @@ begin
   begin
 
     if rising_edge(clk) then
+      -- Compared a clock ahead, out of the row-end logic: beat_y and the
+      -- limits change only on a frame's first beat (idle: the limits it
+      -- loads are in_limits) or a row's last one, and a row has at least
+      -- two beats, so at a row's last beat the comparison is up to date.
+      if out_state = idle then
+        y_at_last <= to_sl(beat_y = in_limits.h_last_m1);
+      else
+        y_at_last <= to_sl(beat_y = out_limits.h_last_m1);
+      end if;
       if advance = '1' then
         tokens(1).valid  <= emit;
         tokens(1).border <= to_sl(out_state = flush);
@@ -567,7 +577,7 @@ begin
             for lane in 0 to PPC - 1 loop
               out_x_in(lane) <= to_sl(first_inside_beat(lane) = 0);
             end loop;
-            out_y_last <= to_sl(beat_y = out_limits.h_last_m1);
+            out_y_last <= y_at_last;
             out_y_in   <= (out_y_in and not to_sl(beat_y = out_limits.y_hi)) or to_sl(beat_y = R - 1);
             if out_y_last = '1' then
               out_state  <= idle;
