@@ -79,7 +79,7 @@ demo: setup
 	@echo "wrote $(DEMO)/opencv_3x3.png, $(DEMO)/paper_sad_region4.png and $(DEMO)/opencv_3x3_budget.png (at most 4 per 64x64 cell) (+ .csv): the corners the RTL emitted"
 
 test: setup lint
-	$(PYTEST) -m "not slow" --durations=40
+	$(PYTEST) -m "not slow" --durations=60
 
 test-full: setup lint
 	$(PYTEST)

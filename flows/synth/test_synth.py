@@ -226,8 +226,8 @@ def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
 @pytest.mark.parametrize(
     ("decided_ahead", "pixel_ahead", "levels"),
     [
-        # The shallowest; the others take a minute or more each to map.
-        (False, True, 5),
+        # Each takes one to three minutes to map: all under `make test-full`.
+        pytest.param(False, True, 5, marks=pytest.mark.slow),
         pytest.param(False, False, 6, marks=pytest.mark.slow),
         pytest.param(True, False, 8, marks=pytest.mark.slow),
         pytest.param(True, True, 7, marks=pytest.mark.slow),

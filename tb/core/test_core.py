@@ -35,10 +35,10 @@ def test_core_generated(request, score, nms):
     )
 
 
-# The three smallest photograph crops in `make test` (whole photographs go
-# through the top with the fast engine there: sim/tests/test_engines.py), all
-# six in `make test-full`.
-CROPS = [3, pytest.param(6, marks=pytest.mark.slow)]
+# The smallest photograph crop in `make test` (whole photographs go through
+# the top with the fast engine there: sim/tests/test_engines.py), all six in
+# `make test-full`.
+CROPS = [1, pytest.param(6, marks=pytest.mark.slow)]
 
 
 @pytest.mark.parametrize("crops", CROPS)
@@ -58,8 +58,18 @@ def test_core_photos(request, score, nms, crops):
     )
 
 
-@pytest.mark.parametrize("ppc", [2, 4])
-@pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "3x3"), ("sad", "none")])
+# Three cases in `make test`, all six in `make test-full`.
+PPC_CONFIGS = [
+    ("opencv", "3x3", 2),
+    ("opencv", "3x3", 4),
+    ("sad", "none", 2),
+    pytest.param("sad", "none", 4, marks=pytest.mark.slow),
+    pytest.param("sad", "3x3", 2, marks=pytest.mark.slow),
+    pytest.param("sad", "3x3", 4, marks=pytest.mark.slow),
+]
+
+
+@pytest.mark.parametrize(("score", "nms", "ppc"), PPC_CONFIGS)
 def test_core_ppc(request, score, nms, ppc):
     """Detector + 3x3 NMS or none with 2 and 4 pixels per beat: generated
     images (noise at threshold 0 among them), malformed frames (widths that

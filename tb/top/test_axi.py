@@ -56,13 +56,20 @@ def test_axi_robustness(request, score, nms):
     )
 
 
-BUDGET_CASES = [("opencv", "3x3", 1, 15), ("sad", "none", 1, 4), ("opencv", "3x3", 4, 15)]
+# One case in `make test`; the other two (PPC 4, the sad score with `none`) in
+# `make test-full`: the fast engine runs the budget at PPC 4 in `make test`
+# (sim/tests/test_engines.py::test_budget_at_full_hd).
+BUDGET_CASES = [
+    ("opencv", "3x3", 1, 15),
+    pytest.param("sad", "none", 1, 4, marks=pytest.mark.slow, id="sad-none-ppc1-k4"),
+    pytest.param("opencv", "3x3", 4, 15, marks=pytest.mark.slow, id="opencv-3x3-ppc4-k15"),
+]
 
 
 @pytest.mark.parametrize(
     ("score", "nms", "ppc", "k"),
     BUDGET_CASES,
-    ids=[f"{s}-{n}-ppc{p}-k{k}" for s, n, p, k in BUDGET_CASES],
+    ids=["opencv-3x3-ppc1-k15", "sad-none-ppc1-k4", "opencv-3x3-ppc4-k15"],
 )
 def test_axi_budget(request, score, nms, ppc, k):
     """The keypoint budget in the top (MAX_PER_CELL = k): the BUDGET register's
@@ -95,17 +102,22 @@ def test_axi_registers_random(request):
     )
 
 
+# opencv + 3x3 in `make test`; the sad score and `none` in `make test-full`
+# (in `make test` the sad score runs at PPC 4 through the top on both engines,
+# sim/tests/test_engines.py, and with `none` at PPC 2 through the core).
 PPC_CASES = [
     ("opencv", "3x3", 2),
     ("opencv", "3x3", 4),
-    ("sad", "3x3", 2),
-    ("sad", "3x3", 4),
-    ("opencv", "none", 4),
+    pytest.param("sad", "3x3", 2, marks=pytest.mark.slow),
+    pytest.param("sad", "3x3", 4, marks=pytest.mark.slow),
+    pytest.param("opencv", "none", 4, marks=pytest.mark.slow),
 ]
 
 
 @pytest.mark.parametrize(
-    ("score", "nms", "ppc"), PPC_CASES, ids=[f"{s}-{n}-ppc{p}" for s, n, p in PPC_CASES]
+    ("score", "nms", "ppc"),
+    PPC_CASES,
+    ids=["opencv-3x3-ppc2", "opencv-3x3-ppc4", "sad-3x3-ppc2", "sad-3x3-ppc4", "opencv-none-ppc4"],
 )
 def test_axi_ppc(request, score, nms, ppc):
     """2 and 4 pixels per clock (PPC), 3x3 NMS and none: the registers (MODE.PPC,
@@ -153,9 +165,11 @@ def test_axi_throughput(request, tmp_path):
     print("clocks to each frame's last record:", json.loads(results.read_text()))
 
 
-def test_axi_photos(request):
+@pytest.mark.parametrize("crops", [1, pytest.param(3, marks=pytest.mark.slow)])
+def test_axi_photos(request, crops):
     """Photograph crops through the top (no score video, default FIFO), against
-    the golden and cv2.FastFeatureDetector; the registers of this build."""
+    the golden and cv2.FastFeatureDetector; the registers of this build. One crop
+    in `make test`, three in `make test-full`."""
     run_cocotb(
         "fastnms_axi",
         "axi_tb",
@@ -165,7 +179,7 @@ def test_axi_photos(request):
         env={
             "TB_IDLE": "0.05",
             "TB_STALL": "0.2",
-            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:3]),
+            "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:crops]),
         },
     )
 
