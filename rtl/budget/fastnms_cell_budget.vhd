@@ -8,12 +8,16 @@
 -- beat (in_eof = '1', in_x/in_y the frame's last pixel). Every beat carries
 -- the configuration, in_cell_log (log2(CELL) - 4, above 4 read as 4) and
 -- in_per_cell (K, above MAX_PER_CELL read as MAX_PER_CELL); the values of a
--- frame's first beat apply to the whole frame.
+-- frame's first beat apply to the whole frame. Optional row-end beats
+-- (in_row_end = '1', in_eof = '0', not records) promise that every record of
+-- the lines up to in_y has come: the one at a cell row's last line starts
+-- that row's drain then (the core's NMS sends one every 16 lines).
 --
 -- Output: with K > 0, a cell row's kept records once the row is complete (at
--- the first record of a later cell row, or at the end of frame): cells left to
--- right, best first within a cell; then the end-of-frame beat. With K = 0 the
--- beats pass in order.
+-- its last line's row-end beat, the first record of a later cell row, or the
+-- end of frame): cells left to right, best first within a cell; then the
+-- end-of-frame beat. With K = 0 the records and end of frame pass in order.
+-- Row-end beats never leave the block.
 --
 -- How (docs/fastnms_cell_budget.md): the best K of each cell of the cell row
 -- being filled are kept sorted in one memory word per cell (K entries of a
@@ -27,10 +31,10 @@
 -- The input waits (a) while the memory is cleared after reset
 -- (ceil(MAX_WIDTH / 16) clocks); (b) when a record opens a cell row while the
 -- other bank still drains (a drain takes 3 clocks per cell up to the last cell
--- written plus one per record, and starts at the first record of the next
--- cell row: the output held back, sparse rows, or frames back to back), or the
--- job queue is full; (c) with K = 0, while the previous frame's jobs are not
--- done.
+-- written plus one per record; without row-end beats it starts at the first
+-- record of the next cell row: the output held back, sparse rows without
+-- row-end beats, or frames back to back), or the job queue is full; (c) with
+-- K = 0, while the previous frame's jobs are not done.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -54,6 +58,7 @@ entity fastnms_cell_budget is
     in_y        : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     in_score    : in    unsigned(SCORE_BITS - 1 downto 0);
     in_eof      : in    std_logic;
+    in_row_end  : in    std_logic;
     in_cell_log : in    unsigned(2 downto 0);
     in_per_cell : in    unsigned(3 downto 0);
     out_valid   : out   std_logic;
@@ -118,7 +123,7 @@ begin
   -- No memory: every beat passes.
 
   pass_only : if MAX_PER_CELL = 0 generate
-    o_valid  <= in_valid;
+    o_valid  <= in_valid and not in_row_end;
     in_ready <= o_ready;
     o_beat   <= pack(in_eof, in_x, in_y, in_score);
   end generate pass_only;
@@ -132,7 +137,7 @@ begin
     constant WORD_BITS  : positive := K_MAX * ENTRY_BITS;     -- entries best first
     constant JOB_SLOTS  : positive := 4;
     -- The input beat after decoding, as the input buffer holds it.
-    constant D_BITS : positive := BEAT_BITS + 3 + 4 + 1 + 1 + Y_BITS + ADDR_BITS + 16;
+    constant D_BITS : positive := BEAT_BITS + 3 + 4 + 4 + Y_BITS + ADDR_BITS + 16;
 
     subtype word_t is std_logic_vector(WORD_BITS - 1 downto 0);
 
@@ -257,6 +262,8 @@ begin
     signal i_take    : std_logic;
     signal i_ready   : std_logic;
     signal i_started : std_logic;
+    signal i_open    : std_logic; -- a record went in since the frame's start or the last close
+    signal i_close   : std_logic; -- the beat is a row-end beat that closes the open cell row
     signal i_log     : log_t;
     signal i_k       : natural range 0 to K_MAX;
     signal i_last_y  : unsigned(Y_BITS - 1 downto 0);
@@ -275,7 +282,9 @@ begin
     signal s_k      : natural range 0 to K_MAX;
     signal s_pass   : std_logic;       -- K = 0: the beat passes
     signal s_switch : std_logic;       -- a record of a later cell row than the last record
-    signal s_open   : std_logic;       -- the frame's first record
+    signal s_open   : std_logic;       -- a record with no cell row open (the frame's first, or after a close)
+    signal s_marker : std_logic;       -- a row-end beat
+    signal s_close  : std_logic;       -- a row-end beat that closes the open cell row
     signal s_y0     : unsigned(Y_BITS - 1 downto 0); -- the first line of the record's cell row
     signal s_cell   : addr_t;
     signal s_offset : std_logic_vector(15 downto 0); -- y and x inside the cell
@@ -362,7 +371,9 @@ begin
       variable mask     : unsigned(15 downto 0);
       variable y_wide   : unsigned(15 downto 0);
       variable x_wide   : unsigned(15 downto 0);
-      variable switched : std_logic;
+      variable a_record : std_logic;
+      variable later    : std_logic;
+      variable closed   : std_logic;
 
     begin
 
@@ -374,18 +385,24 @@ begin
         k   := minimum(K_MAX, to_integer(in_per_cell));
       end if;
 
-      mask   := cell_mask(log);
-      y_wide := resize(in_y, 16);
-      x_wide := resize(in_x, 16);
-      -- A later cell row: a differing bit of y above the cell's (raster order: never before).
-      switched := i_started and to_sl(((y_wide xor resize(i_last_y, 16)) and not cell_mask(i_log)) /= 0);
-      i_data   <= pack(in_eof, in_x, in_y, in_score)
-                  & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
-                  & (switched and not in_eof) & (not i_started and not in_eof)
-                  & std_logic_vector(resize(y_wide and not mask, Y_BITS))
-                  & std_logic_vector(resize(shift_right(x_wide, log + 4), ADDR_BITS))
-                  & std_logic_vector(y_wide(7 downto 0) and mask(7 downto 0))
-                  & std_logic_vector(x_wide(7 downto 0) and mask(7 downto 0));
+      mask     := cell_mask(log);
+      y_wide   := resize(in_y, 16);
+      x_wide   := resize(in_x, 16);
+      a_record := not in_eof and not in_row_end;
+      -- A later cell row than the last record's: a differing bit of y above the cell's
+      -- (raster order: never before).
+      later := i_open and to_sl(((y_wide xor resize(i_last_y, 16)) and not cell_mask(i_log)) /= 0);
+      -- A row-end beat closes the open cell row at its last line (or past it).
+      closed  := i_open and in_row_end and
+                 (later or to_sl((y_wide(7 downto 0) and mask(7 downto 0)) = mask(7 downto 0)));
+      i_close <= closed;
+      i_data  <= pack(in_eof, in_x, in_y, in_score)
+                 & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
+                 & (later and a_record) & (not i_open and a_record) & in_row_end & closed
+                 & std_logic_vector(resize(y_wide and not mask, Y_BITS))
+                 & std_logic_vector(resize(shift_right(x_wide, log + 4), ADDR_BITS))
+                 & std_logic_vector(y_wide(7 downto 0) and mask(7 downto 0))
+                 & std_logic_vector(x_wide(7 downto 0) and mask(7 downto 0));
 
     end process decode;
 
@@ -395,7 +412,13 @@ begin
       if rising_edge(clk) then
         if i_take = '1' then
           i_started <= not in_eof;
-          i_last_y  <= in_y;
+          if in_eof = '0' and in_row_end = '0' then
+            i_open   <= '1';
+            i_last_y <= in_y;
+          end if;
+          if in_eof = '1' or i_close = '1' then
+            i_open <= '0';
+          end if;
           if i_started = '0' then
             i_log <= minimum(4, to_integer(in_cell_log));
             i_k   <= minimum(K_MAX, to_integer(in_per_cell));
@@ -403,6 +426,7 @@ begin
         end if;
         if rst = '1' then
           i_started <= '0';
+          i_open    <= '0';
         end if;
       end if;
 
@@ -434,6 +458,8 @@ begin
     s_k      <= to_integer(unsigned(s_data(D_BITS - BEAT_BITS - 4 downto D_BITS - BEAT_BITS - 7)));
     s_switch <= s_data(D_BITS - BEAT_BITS - 8);
     s_open   <= s_data(D_BITS - BEAT_BITS - 9);
+    s_marker <= s_data(D_BITS - BEAT_BITS - 10);
+    s_close  <= s_data(D_BITS - BEAT_BITS - 11);
     s_y0     <= unsigned(s_data(Y_BITS + ADDR_BITS + 15 downto ADDR_BITS + 16));
     s_cell   <= unsigned(s_data(ADDR_BITS + 15 downto 16));
     s_offset <= s_data(15 downto 0);
@@ -444,8 +470,9 @@ begin
     target <= 1 - fill_bank when s_switch = '1' else
               fill_bank;
 
-    -- K = 0 passes the beat once no job is left; a record needs its bank free (and,
-    -- opening a cell row, a place in the queue); an end of frame a place in the queue.
+    -- A row-end beat goes, closing its row needs a place in the queue; K = 0 passes
+    -- the beat once no job is left; a record needs its bank free (and, opening a cell
+    -- row, a place in the queue); an end of frame a place in the queue.
     decide : process (all) is
     begin
 
@@ -453,7 +480,9 @@ begin
       take <= '0';
 
       if s_valid = '1' and clearing = '0' then
-        if s_pass = '1' then
+        if s_marker = '1' then
+          take <= not s_close or s_pass or to_sl(job_count < JOB_SLOTS);
+        elsif s_pass = '1' then
           pass <= jobs_idle;
           take <= jobs_idle and o_ready;
         elsif s_eof = '1' then
@@ -466,17 +495,18 @@ begin
     end process decide;
 
     s_ready    <= take;
-    insert_now <= take and not s_pass and not s_eof;
+    insert_now <= take and not s_pass and not s_eof and not s_marker;
 
-    -- The job a beat queues: a later cell row drains the bank filled so far; an end of
-    -- frame drains the open row's bank, if a record opened one, then emits itself.
-    job_new.drain <= s_switch when s_eof = '0' else
+    -- The job a beat queues: a later cell row, or a row-end beat that closes the row,
+    -- drains the bank filled so far; an end of frame drains the open row's bank, if a
+    -- record opened one, then emits itself.
+    job_new.drain <= s_switch when s_eof = '0' and s_marker = '0' else
                      row_open;
     job_new.bank  <= fill_bank;
     job_new.eof   <= s_eof;
     job_new.x     <= s_x;
     job_new.y     <= s_y;
-    job_push      <= take and not s_pass and (s_switch or s_eof);
+    job_push      <= take and not s_pass and (s_switch or s_eof or s_close);
 
     control : process (clk) is
     begin
@@ -487,7 +517,7 @@ begin
         end if;
         -- A record about to open a cell row: its bank is free, so its row may be set
         -- before the record is taken (and is set again when it is).
-        if s_valid = '1' and s_pass = '0' and s_eof = '0' and (s_open or s_switch) = '1'
+        if s_valid = '1' and s_pass = '0' and s_eof = '0' and s_marker = '0' and (s_open or s_switch) = '1'
            and busy(target) = '0' then
           bank_y0(target)  <= s_y0;
           bank_log(target) <= s_log;
@@ -496,7 +526,7 @@ begin
         if insert_now = '1' then
           row_open <= '1';
         end if;
-        if take = '1' and s_eof = '1' then
+        if take = '1' and (s_eof or s_close) = '1' then
           row_open <= '0';
           if s_pass = '0' and row_open = '1' then
             fill_bank <= 1 - fill_bank;

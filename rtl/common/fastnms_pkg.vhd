@@ -29,6 +29,10 @@ package fastnms_pkg is
   -- from random power-up values (sim/tests/test_engines.py).
   function sim_zeros (n : positive) return std_logic_vector;
 
+  -- The lines after which an NMS built with ROW_MARKS sends a row-end beat:
+  -- y mod 16 = 15, the last lines of the keypoint budget's smallest cells.
+  function is_mark_line (y : unsigned) return boolean;
+
 end package fastnms_pkg;
 
 package body fastnms_pkg is
@@ -104,5 +108,12 @@ package body fastnms_pkg is
     return v;
 
   end function sim_zeros;
+
+  function is_mark_line (y : unsigned) return boolean is
+    variable wide : unsigned(15 downto 0);
+  begin
+    wide := resize(y, 16);
+    return wide(3 downto 0) = "1111";
+  end function is_mark_line;
 
 end package body fastnms_pkg;

@@ -20,7 +20,8 @@
 -- With MAX_PER_CELL > 0 (NMS "3x3" or "none"), fastnms_cell_budget follows
 -- the NMS: at most cfg_per_cell records (clamped to MAX_PER_CELL; 0: all) per
 -- cell of 2 ** (cfg_cell_log + 4) pixels, taken with the start-of-frame beat
--- like the threshold; each cell row's records leave once it is complete,
+-- like the threshold; each cell row's records leave once it is complete
+-- (the NMS, built with ROW_MARKS, tells the budget at every 16th line's end),
 -- cells left to right, best first (docs/fastnms_cell_budget.md). The region
 -- NMS's records come in closing order, up to many rows late: no budget with
 -- it (asserted). MAX_PER_CELL = 0 builds no budget and ignores cfg_cell_log
@@ -115,6 +116,8 @@ architecture rtl of fastnms_core is
   signal s_y     : unsigned(out_y'range);
   signal s_score : unsigned(out_score'range);
   signal s_eof   : std_logic;
+  -- A row-end beat (with the budget only): every record of the lines up to s_y has come.
+  signal s_row_end : std_logic;
   -- The fork between the NMS and the score tap.
   signal n_valid : std_logic;
   signal n_ready : std_logic;
@@ -206,26 +209,28 @@ begin
         MAX_HEIGHT   => MAX_HEIGHT,
         SCORE_BITS   => SCORE_BITS,
         READ_LATENCY => READ_LATENCY,
-        PPC          => PPC
+        PPC          => PPC,
+        ROW_MARKS    => MAX_PER_CELL > 0
       )
       port map (
-        clk        => clk,
-        rst        => rst,
-        cfg_width  => d_width,
-        cfg_height => d_height,
-        in_valid   => n_valid,
-        in_ready   => n_ready,
-        in_score   => d_score,
-        in_sof     => d_sof,
-        in_eol     => d_eol,
-        out_valid  => s_valid,
-        out_ready  => s_ready,
-        out_x      => s_x,
-        out_y      => s_y,
-        out_score  => s_score,
-        out_eof    => s_eof,
-        err_line   => open,
-        err_frame  => open
+        clk         => clk,
+        rst         => rst,
+        cfg_width   => d_width,
+        cfg_height  => d_height,
+        in_valid    => n_valid,
+        in_ready    => n_ready,
+        in_score    => d_score,
+        in_sof      => d_sof,
+        in_eol      => d_eol,
+        out_valid   => s_valid,
+        out_ready   => s_ready,
+        out_x       => s_x,
+        out_y       => s_y,
+        out_score   => s_score,
+        out_eof     => s_eof,
+        out_row_end => s_row_end,
+        err_line    => open,
+        err_frame   => open
       );
 
   end generate suppress_3x3;
@@ -258,6 +263,8 @@ begin
         out_eof   => s_eof
       );
 
+    s_row_end <= '0';
+
   end generate suppress_region;
 
   suppress_none : if NMS = "none" generate
@@ -267,23 +274,25 @@ begin
         MAX_WIDTH  => MAX_WIDTH,
         MAX_HEIGHT => MAX_HEIGHT,
         SCORE_BITS => SCORE_BITS,
-        PPC        => PPC
+        PPC        => PPC,
+        ROW_MARKS  => MAX_PER_CELL > 0
       )
       port map (
-        clk       => clk,
-        rst       => rst,
-        in_valid  => n_valid,
-        in_ready  => n_ready,
-        in_corner => d_corner,
-        in_score  => d_score,
-        in_eol    => d_eol,
-        in_eof    => d_eof,
-        out_valid => s_valid,
-        out_ready => s_ready,
-        out_x     => s_x,
-        out_y     => s_y,
-        out_score => s_score,
-        out_eof   => s_eof
+        clk         => clk,
+        rst         => rst,
+        in_valid    => n_valid,
+        in_ready    => n_ready,
+        in_corner   => d_corner,
+        in_score    => d_score,
+        in_eol      => d_eol,
+        in_eof      => d_eof,
+        out_valid   => s_valid,
+        out_ready   => s_ready,
+        out_x       => s_x,
+        out_y       => s_y,
+        out_score   => s_score,
+        out_eof     => s_eof,
+        out_row_end => s_row_end
       );
 
   end generate suppress_none;
@@ -363,6 +372,7 @@ begin
         in_y        => s_y,
         in_score    => s_score,
         in_eof      => s_eof,
+        in_row_end  => s_row_end,
         in_cell_log => unsigned(q_tag(6 downto 4)),
         in_per_cell => unsigned(q_tag(3 downto 0)),
         out_valid   => out_valid,

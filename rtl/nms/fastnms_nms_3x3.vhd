@@ -13,7 +13,11 @@
 --
 -- Output: one record per survivor in raster order (out_x, out_y, out_score,
 -- out_eof = '0'), then one end-of-frame beat (out_eof = '1', out_x/out_y the
--- frame's last pixel, out_score 0), also for a frame without corners.
+-- frame's last pixel, out_score 0), also for a frame without corners. With
+-- ROW_MARKS, after the records of each line y with y mod 16 = 15 (the
+-- frame's last line excepted) a row-end beat (out_row_end = '1', out_eof =
+-- '0', out_x/out_y the line's last pixel, out_score 0): the keypoint budget
+-- starts a cell row's drain with it. out_row_end is '0' on every other beat.
 --
 -- Pipeline: a 3x3 window of scores per pixel (two lines in block RAM), the 8
 -- comparisons per pixel, their AND, then a skid buffer whose registered
@@ -37,26 +41,28 @@ entity fastnms_nms_3x3 is
     MAX_HEIGHT   : positive := 4095;
     SCORE_BITS   : positive := 8;
     READ_LATENCY : positive := 1;
-    PPC          : positive := 1
+    PPC          : positive := 1;
+    ROW_MARKS    : boolean  := false
   );
   port (
-    clk        : in    std_logic;
-    rst        : in    std_logic;
-    cfg_width  : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
-    cfg_height : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    in_valid   : in    std_logic;
-    in_ready   : out   std_logic;
-    in_score   : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
-    in_sof     : in    std_logic;
-    in_eol     : in    std_logic;
-    out_valid  : out   std_logic;
-    out_ready  : in    std_logic;
-    out_x      : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    out_y      : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    out_score  : out   unsigned(SCORE_BITS - 1 downto 0);
-    out_eof    : out   std_logic;
-    err_line   : out   std_logic;
-    err_frame  : out   std_logic
+    clk         : in    std_logic;
+    rst         : in    std_logic;
+    cfg_width   : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height  : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    in_valid    : in    std_logic;
+    in_ready    : out   std_logic;
+    in_score    : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
+    in_sof      : in    std_logic;
+    in_eol      : in    std_logic;
+    out_valid   : out   std_logic;
+    out_ready   : in    std_logic;
+    out_x       : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y       : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score   : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof     : out   std_logic;
+    out_row_end : out   std_logic;
+    err_line    : out   std_logic;
+    err_frame   : out   std_logic
   );
 end entity fastnms_nms_3x3;
 
@@ -88,6 +94,7 @@ architecture rtl of fastnms_nms_3x3 is
   signal w_window : std_logic_vector(3 * BLOCK_COLS * SCORE_BITS - 1 downto 0);
   signal w_inside : lanes_t;
   signal w_eof    : std_logic;
+  signal w_eol    : std_logic;
   signal w_x      : x_t;
   signal w_y      : y_t;
 
@@ -95,6 +102,7 @@ architecture rtl of fastnms_nms_3x3 is
   signal s1_valid  : std_logic;
   signal s1_inside : lanes_t;
   signal s1_eof    : std_logic;
+  signal s1_mark   : std_logic; -- a row-end beat follows the beat's records
   signal s1_above  : above_t;
   signal s1_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal s1_x      : x_t;
@@ -104,6 +112,7 @@ architecture rtl of fastnms_nms_3x3 is
   signal s2_valid : std_logic;
   signal s2_keep  : lanes_t;
   signal s2_eof   : std_logic;
+  signal s2_mark  : std_logic;
   signal s2_score : unsigned(PPC * SCORE_BITS - 1 downto 0);
   signal s2_x     : x_t;
   signal s2_y     : y_t;
@@ -143,7 +152,7 @@ begin
       out_window => w_window,
       out_inside => w_inside,
       out_sof    => open,
-      out_eol    => open,
+      out_eol    => w_eol,
       out_eof    => w_eof,
       out_x      => w_x,
       out_y      => w_y,
@@ -182,11 +191,13 @@ begin
         s1_valid  <= w_valid;
         s1_inside <= w_inside;
         s1_eof    <= w_eof;
+        s1_mark   <= to_sl(ROW_MARKS and is_mark_line(w_y)) and w_eol and not w_eof;
         s1_x      <= w_x;
         s1_y      <= w_y;
 
         s2_valid <= s1_valid;
         s2_eof   <= s1_eof;
+        s2_mark  <= s1_mark;
         s2_score <= s1_score;
         s2_x     <= s1_x;
         s2_y     <= s1_y;
@@ -202,19 +213,21 @@ begin
 
   s2_any <= or s2_keep;
 
-  -- One pixel per beat: survivors and the end of frame straight out through
-  -- a skid buffer.
+  -- One pixel per beat: survivors, row ends and the end of frame straight
+  -- out through a skid buffer. A line's last pixel is never a survivor (its
+  -- window is not inside the image), so a row end has a beat of its own.
 
   single_lane : if PPC = 1 generate
 
-    signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS downto 0);
+    signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS + 1 downto 0);
     signal record_out : std_logic_vector(record_in'range);
 
   begin
 
-    record_in <= s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
+    record_in <= s2_eof & '0' & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
                  std_logic_vector(s2_score) when s2_keep(0) = '1' else
-                 s2_eof & std_logic_vector(s2_x) & std_logic_vector(s2_y) & (SCORE_BITS - 1 downto 0 => '0');
+                 s2_eof & s2_mark & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
+                 (SCORE_BITS - 1 downto 0 => '0');
 
     output_buffer : entity work.fastnms_skid_buffer
       generic map (
@@ -223,7 +236,7 @@ begin
       port map (
         clk       => clk,
         rst       => rst,
-        in_valid  => s2_valid and (s2_any or s2_eof),
+        in_valid  => s2_valid and (s2_any or s2_eof or s2_mark),
         in_ready  => advance,
         in_data   => record_in,
         out_valid => out_valid,
@@ -231,10 +244,11 @@ begin
         out_data  => record_out
       );
 
-    out_eof   <= record_out(record_out'high);
-    out_x     <= unsigned(record_out(record_out'high - 1 downto y_t'length + SCORE_BITS));
-    out_y     <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
-    out_score <= unsigned(record_out(SCORE_BITS - 1 downto 0));
+    out_eof     <= record_out(record_out'high);
+    out_row_end <= record_out(record_out'high - 1);
+    out_x       <= unsigned(record_out(record_out'high - 2 downto y_t'length + SCORE_BITS));
+    out_y       <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
+    out_score   <= unsigned(record_out(SCORE_BITS - 1 downto 0));
 
   end generate single_lane;
 
@@ -252,21 +266,23 @@ begin
         DEPTH      => MAX_WIDTH / (2 * PPC) + 16
       )
       port map (
-        clk       => clk,
-        rst       => rst,
-        in_valid  => s2_valid,
-        in_ready  => advance,
-        in_keep   => s2_keep,
-        in_scores => s2_score,
-        in_x      => s2_x,
-        in_y      => s2_y,
-        in_eof    => s2_eof,
-        out_valid => out_valid,
-        out_ready => out_ready,
-        out_x     => out_x,
-        out_y     => out_y,
-        out_score => out_score,
-        out_eof   => out_eof
+        clk         => clk,
+        rst         => rst,
+        in_valid    => s2_valid,
+        in_ready    => advance,
+        in_keep     => s2_keep,
+        in_scores   => s2_score,
+        in_x        => s2_x,
+        in_y        => s2_y,
+        in_eof      => s2_eof,
+        in_row_end  => s2_mark,
+        out_valid   => out_valid,
+        out_ready   => out_ready,
+        out_x       => out_x,
+        out_y       => out_y,
+        out_score   => out_score,
+        out_eof     => out_eof,
+        out_row_end => out_row_end
       );
 
   end generate several_lanes;

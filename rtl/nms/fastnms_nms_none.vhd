@@ -1,7 +1,12 @@
 -- No suppression: one record per corner of the detector's per-pixel stream,
 -- in raster order (out_x, out_y, out_score, out_eof = '0'), then one
 -- end-of-frame beat (out_eof = '1', out_x/out_y the frame's last pixel,
--- out_score 0), also for a frame without corners.
+-- out_score 0), also for a frame without corners. With ROW_MARKS, after the
+-- records of each line y with y mod 16 = 15 (the frame's last line
+-- excepted) a row-end beat (out_row_end = '1', out_eof = '0', out_x/out_y the
+-- line's last pixel, out_score 0) for the keypoint budget; with PPC = 1 a
+-- corner on that last pixel takes the beat instead (the detector never
+-- flags a corner there).
 --
 -- Input: the detector's output stream, one beat of PPC pixels with their
 -- corner flags (in_corner(i)) and scores (slice i of in_score), in_eol and
@@ -26,23 +31,25 @@ entity fastnms_nms_none is
     MAX_WIDTH  : positive := 1920;
     MAX_HEIGHT : positive := 4095;
     SCORE_BITS : positive := 8;
-    PPC        : positive := 1
+    PPC        : positive := 1;
+    ROW_MARKS  : boolean  := false
   );
   port (
-    clk       : in    std_logic;
-    rst       : in    std_logic;
-    in_valid  : in    std_logic;
-    in_ready  : out   std_logic;
-    in_corner : in    std_logic_vector(PPC - 1 downto 0);
-    in_score  : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
-    in_eol    : in    std_logic;
-    in_eof    : in    std_logic;
-    out_valid : out   std_logic;
-    out_ready : in    std_logic;
-    out_x     : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    out_y     : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    out_score : out   unsigned(SCORE_BITS - 1 downto 0);
-    out_eof   : out   std_logic
+    clk         : in    std_logic;
+    rst         : in    std_logic;
+    in_valid    : in    std_logic;
+    in_ready    : out   std_logic;
+    in_corner   : in    std_logic_vector(PPC - 1 downto 0);
+    in_score    : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
+    in_eol      : in    std_logic;
+    in_eof      : in    std_logic;
+    out_valid   : out   std_logic;
+    out_ready   : in    std_logic;
+    out_x       : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y       : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score   : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof     : out   std_logic;
+    out_row_end : out   std_logic
   );
 end entity fastnms_nms_none;
 
@@ -59,6 +66,7 @@ architecture rtl of fastnms_nms_none is
   signal x_clear : std_logic;
   signal y_clear : std_logic;
   signal y_step  : std_logic;
+  signal mark    : std_logic;             -- a row-end beat follows the beat's records
 
 begin
 
@@ -94,13 +102,14 @@ begin
     );
 
   x_pixel <= shift_left(x, PPC / 2);
+  mark    <= to_sl(ROW_MARKS and is_mark_line(y)) and in_eol and not in_eof;
 
   -- One pixel per beat: the corner and the end of frame straight out.
 
   single_lane : if PPC = 1 generate
 
     signal s1_valid : std_logic;
-    signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS downto 0);
+    signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS + 1 downto 0);
     signal s1_out   : std_logic_vector(s1_data'range);
 
   begin
@@ -110,8 +119,9 @@ begin
 
       if rising_edge(clk) then
         if advance = '1' then
-          s1_valid <= in_valid and (in_corner(0) or in_eof);
-          s1_data  <= in_eof & std_logic_vector(x) & std_logic_vector(y) & std_logic_vector(in_score);
+          s1_valid <= in_valid and (in_corner(0) or in_eof or mark);
+          s1_data  <= in_eof & (mark and not in_corner(0)) & std_logic_vector(x) & std_logic_vector(y) &
+                      std_logic_vector(in_score);
         end if;
         if rst = '1' then
           s1_valid <= '0';
@@ -135,10 +145,11 @@ begin
         out_data  => s1_out
       );
 
-    out_eof   <= s1_out(s1_out'high);
-    out_x     <= unsigned(s1_out(s1_out'high - 1 downto out_y'length + SCORE_BITS));
-    out_y     <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
-    out_score <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
+    out_eof     <= s1_out(s1_out'high);
+    out_row_end <= s1_out(s1_out'high - 1);
+    out_x       <= unsigned(s1_out(s1_out'high - 2 downto out_y'length + SCORE_BITS));
+    out_y       <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
+    out_score   <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
 
   end generate single_lane;
 
@@ -152,6 +163,7 @@ begin
     signal s1_x      : unsigned(out_x'range);
     signal s1_y      : unsigned(out_y'range);
     signal s1_eof    : std_logic;
+    signal s1_mark   : std_logic;
 
   begin
 
@@ -166,6 +178,7 @@ begin
           s1_x      <= x_pixel;
           s1_y      <= y;
           s1_eof    <= in_eof;
+          s1_mark   <= mark;
         end if;
         if rst = '1' then
           s1_valid <= '0';
@@ -183,21 +196,23 @@ begin
         DEPTH      => MAX_WIDTH / PPC
       )
       port map (
-        clk       => clk,
-        rst       => rst,
-        in_valid  => s1_valid,
-        in_ready  => advance,
-        in_keep   => s1_corner,
-        in_scores => s1_scores,
-        in_x      => s1_x,
-        in_y      => s1_y,
-        in_eof    => s1_eof,
-        out_valid => out_valid,
-        out_ready => out_ready,
-        out_x     => out_x,
-        out_y     => out_y,
-        out_score => out_score,
-        out_eof   => out_eof
+        clk         => clk,
+        rst         => rst,
+        in_valid    => s1_valid,
+        in_ready    => advance,
+        in_keep     => s1_corner,
+        in_scores   => s1_scores,
+        in_x        => s1_x,
+        in_y        => s1_y,
+        in_eof      => s1_eof,
+        in_row_end  => s1_mark,
+        out_valid   => out_valid,
+        out_ready   => out_ready,
+        out_x       => out_x,
+        out_y       => out_y,
+        out_score   => out_score,
+        out_eof     => out_eof,
+        out_row_end => out_row_end
       );
 
   end generate several_lanes;

@@ -4,11 +4,13 @@
 -- an NMS that sees PPC pixels per clock keep the core's output interface of
 -- one record per clock.
 --
--- Input: beats; those without a survivor or an end of frame are dropped.
--- in_x is the column of pixel 0 of the beat, a multiple of PPC.
+-- Input: beats; those without a survivor, an end of frame or a row end are
+-- dropped. in_x is the column of pixel 0 of the beat, a multiple of PPC.
 -- Output: out_x, out_y, out_score of a survivor with out_eof = '0'; the
 -- end-of-frame record has out_eof = '1', out_x, out_y the frame's last pixel
--- (in_x + PPC - 1) and out_score 0.
+-- (in_x + PPC - 1) and out_score 0. A beat's in_row_end (never with in_eof)
+-- gives, after its survivors, a row-end beat: out_row_end = '1', out_eof =
+-- '0', out_x, out_y the beat's last pixel, out_score 0.
 --
 -- Pipeline: a FIFO of DEPTH beats, an output stage that holds one beat and
 -- hands out its lanes lowest first (a beat with n records takes n clocks,
@@ -33,32 +35,34 @@ entity fastnms_nms_serializer is
     DEPTH      : positive := 512
   );
   port (
-    clk       : in    std_logic;
-    rst       : in    std_logic;
-    in_valid  : in    std_logic;
-    in_ready  : out   std_logic;
-    in_keep   : in    std_logic_vector(PPC - 1 downto 0);
-    in_scores : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
-    in_x      : in    unsigned(X_BITS - 1 downto 0);
-    in_y      : in    unsigned(Y_BITS - 1 downto 0);
-    in_eof    : in    std_logic;
-    out_valid : out   std_logic;
-    out_ready : in    std_logic;
-    out_x     : out   unsigned(X_BITS - 1 downto 0);
-    out_y     : out   unsigned(Y_BITS - 1 downto 0);
-    out_score : out   unsigned(SCORE_BITS - 1 downto 0);
-    out_eof   : out   std_logic
+    clk         : in    std_logic;
+    rst         : in    std_logic;
+    in_valid    : in    std_logic;
+    in_ready    : out   std_logic;
+    in_keep     : in    std_logic_vector(PPC - 1 downto 0);
+    in_scores   : in    unsigned(PPC * SCORE_BITS - 1 downto 0);
+    in_x        : in    unsigned(X_BITS - 1 downto 0);
+    in_y        : in    unsigned(Y_BITS - 1 downto 0);
+    in_eof      : in    std_logic;
+    in_row_end  : in    std_logic;
+    out_valid   : out   std_logic;
+    out_ready   : in    std_logic;
+    out_x       : out   unsigned(X_BITS - 1 downto 0);
+    out_y       : out   unsigned(Y_BITS - 1 downto 0);
+    out_score   : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof     : out   std_logic;
+    out_row_end : out   std_logic
   );
 end entity fastnms_nms_serializer;
 
 architecture rtl of fastnms_nms_serializer is
 
   constant LANE_BITS : positive := clog2(PPC);
-  constant BEAT_BITS : positive := 1 + Y_BITS + X_BITS + PPC + PPC * SCORE_BITS;
-  constant REC_BITS  : positive := 1 + X_BITS + Y_BITS + SCORE_BITS;
+  constant BEAT_BITS : positive := 2 + Y_BITS + X_BITS + PPC + PPC * SCORE_BITS;
+  constant REC_BITS  : positive := 2 + X_BITS + Y_BITS + SCORE_BITS;
 
   -- A beat's records still to hand out: its survivors (bits 0 .. PPC - 1)
-  -- and its end of frame (bit PPC), lowest first.
+  -- and its end of frame or row end (bit PPC), lowest first.
   subtype items_t is std_logic_vector(PPC downto 0);
 
   -- The lowest set item of a non-zero set.
@@ -120,6 +124,7 @@ architecture rtl of fastnms_nms_serializer is
   signal cur_items  : items_t;
   signal cur_last   : std_logic;
   signal cur_scores : unsigned(PPC * SCORE_BITS - 1 downto 0);
+  signal cur_eof    : std_logic; -- bit PPC is the end of frame (else a row end)
   signal cur_x      : unsigned(X_BITS - 1 downto 0);
   signal cur_y      : unsigned(Y_BITS - 1 downto 0);
   signal q_items    : items_t;
@@ -150,12 +155,12 @@ begin
     port map (
       clk       => clk,
       rst       => rst,
-      in_valid  => in_valid and (or in_keep or in_eof),
+      in_valid  => in_valid and (or in_keep or in_eof or in_row_end),
       in_ready  => in_ready,
       in_room2  => open,
       in_room3  => open,
       in_spare  => open,
-      in_data   => in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
+      in_data   => in_row_end & in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
                    std_logic_vector(in_scores),
       out_valid => q_valid,
       out_ready => q_ready,
@@ -169,7 +174,8 @@ begin
   emit    <= cur_valid and rec_ready;
   done    <= emit and cur_last;
   q_ready <= not cur_valid or done;
-  q_items <= q_data(BEAT_BITS - 1) & q_data(PPC + PPC * SCORE_BITS - 1 downto PPC * SCORE_BITS);
+  q_items <= (q_data(BEAT_BITS - 1) or q_data(BEAT_BITS - 2)) &
+             q_data(PPC + PPC * SCORE_BITS - 1 downto PPC * SCORE_BITS);
   rest    <= without_lowest(cur_items);
 
   hand_out : process (clk) is
@@ -187,11 +193,11 @@ begin
         rec_valid <= '1';
         item      := lowest(cur_items);
         if item < PPC then
-          rec_data <= '0' & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
+          rec_data <= "00" & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
                       std_logic_vector(to_unsigned(item, LANE_BITS)) & std_logic_vector(cur_y) &
                       std_logic_vector(cur_scores((item + 1) * SCORE_BITS - 1 downto item * SCORE_BITS));
         else
-          rec_data <= '1' & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
+          rec_data <= cur_eof & not cur_eof & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
                       (LANE_BITS - 1 downto 0  => '1') & std_logic_vector(cur_y) &
                       (SCORE_BITS - 1 downto 0 => '0');
         end if;
@@ -206,7 +212,8 @@ begin
         cur_valid  <= '1';
         cur_items  <= q_items;
         cur_last   <= single(q_items);
-        cur_y      <= unsigned(q_data(BEAT_BITS - 2 downto BEAT_BITS - 1 - Y_BITS));
+        cur_eof    <= q_data(BEAT_BITS - 2);
+        cur_y      <= unsigned(q_data(BEAT_BITS - 3 downto BEAT_BITS - 2 - Y_BITS));
         cur_x      <= unsigned(q_data(X_BITS + PPC + PPC * SCORE_BITS - 1 downto PPC + PPC * SCORE_BITS));
         cur_scores <= unsigned(q_data(PPC * SCORE_BITS - 1 downto 0));
       end if;
@@ -234,9 +241,10 @@ begin
       out_data  => rec_out
     );
 
-  out_eof   <= rec_out(REC_BITS - 1);
-  out_x     <= unsigned(rec_out(REC_BITS - 2 downto Y_BITS + SCORE_BITS));
-  out_y     <= unsigned(rec_out(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
-  out_score <= unsigned(rec_out(SCORE_BITS - 1 downto 0));
+  out_eof     <= rec_out(REC_BITS - 1);
+  out_row_end <= rec_out(REC_BITS - 2);
+  out_x       <= unsigned(rec_out(REC_BITS - 3 downto Y_BITS + SCORE_BITS));
+  out_y       <= unsigned(rec_out(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
+  out_score   <= unsigned(rec_out(SCORE_BITS - 1 downto 0));
 
 end architecture rtl;

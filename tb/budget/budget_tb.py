@@ -2,7 +2,9 @@
 (any density up to a record every clock, scores with many ties or the full range) against
 the golden model's budget (fastnms.golden.budget.cell_budget), in the block's documented
 output order: cell rows in order, cells left to right, best first within a cell; every
-record in input order with K = 0."""
+record in input order with K = 0. Frames come with or without row-end beats (one after
+the records of every 16th line, as the core's NMS sends them), chosen at random per frame;
+row-end beats never reach the output."""
 
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ from fastnms.golden.budget import hardware_order
 from fastnms.golden.model import detect
 from fastnms.testing import images as testimages
 
-from tb.stream import StreamSink, StreamSource, value
+from tb.stream import StreamSink, StreamSource, sim_ns, value
 from tb.video import PERIOD_NS, record_mismatch
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
@@ -86,17 +88,58 @@ class TB:
         return self.random_records(width, height, density, top), width, height, cell_log, per_cell
 
     @staticmethod
-    def beats(frame) -> list[dict[str, int]]:
+    def beats(frame, row_ends: bool = False) -> list[dict[str, int]]:
+        """The frame's beats: its records, with `row_ends` a row-end beat after the records
+        of each line y with y % 16 == 15 (the frame's last line excepted), then its end."""
         records, width, height, cell_log, per_cell = frame
         cfg = {"cell_log": cell_log, "per_cell": per_cell}
-        out = [{"x": x, "y": y, "score": s, "eof": 0, **cfg} for x, y, s in records.tolist()]
-        return out + [{"x": width - 1, "y": height - 1, "score": 0, "eof": 1, **cfg}]
+        out = []
+        by_line: dict[int, list] = {}
+        for x, y, s in records.tolist():
+            by_line.setdefault(y, []).append((x, y, s))
+        for line in range(height):
+            for x, y, s in by_line.get(line, []):
+                out.append({"x": x, "y": y, "score": s, "eof": 0, "row_end": 0, **cfg})
+            if row_ends and line % 16 == 15 and line < height - 1:
+                out.append({"x": width - 1, "y": line, "score": 0, "eof": 0, "row_end": 1, **cfg})
+        end = {"x": width - 1, "y": height - 1, "score": 0, "eof": 1, "row_end": 0, **cfg}
+        return out + [end]
 
-    async def run_frames(self, frames: list, label: str) -> None:
-        """Send the frames back to back; compare every frame's output with the golden."""
+    async def send_paced(self, beats: list[dict[str, int]], width: int) -> None:
+        """Send one frame's beats as an NMS at one pixel per clock does: a beat no earlier
+        than its pixel's clock (y * width + x after the first), later when the input waits."""
+        clock = 0
+        for beat in beats:
+            while clock < beat["y"] * width + beat["x"]:
+                self.dut.in_valid.value = 0
+                await RisingEdge(self.dut.clk)
+                clock += 1
+            for field, v in beat.items():
+                getattr(self.dut, f"in_{field}").value = v
+            self.dut.in_valid.value = 1
+            await RisingEdge(self.dut.clk)
+            clock += 1
+            while not value(self.dut.in_ready):
+                await RisingEdge(self.dut.clk)
+                clock += 1
+        self.dut.in_valid.value = 0
+
+    async def run_frames(
+        self, frames: list, label: str, row_ends: bool | None = None, paced: bool = False
+    ) -> None:
+        """Send the frames back to back (with row-end beats, without, or with None at
+        random per frame; `paced`: one frame at the pixels' clocks, see send_paced);
+        compare every frame's output with the golden."""
         start = len(self.sink.beats)
-        beats = [b for f in frames for b in self.beats(f)]
-        await self.source.send(beats)
+        beats = []
+        for f in frames:
+            marked = self.rng.random() < 0.5 if row_ends is None else row_ends
+            beats += self.beats(f, marked)
+        if paced:
+            assert len(frames) == 1
+            await self.send_paced(beats, frames[0][1])
+        else:
+            await self.source.send(beats)
         want_eofs = len(frames)
         for _ in range(200 * len(beats) + 2000):
             got_eofs = sum(b["eof"] for b in self.sink.beats[start:])
@@ -166,7 +209,7 @@ async def reset_mid_frame(dut):
     await tb.reset()
     await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
     records = tb.random_records(MAX_WIDTH, MAX_HEIGHT, 0.5, 3)
-    beats = TB.beats((records, MAX_WIDTH, MAX_HEIGHT, 0, 3))
+    beats = TB.beats((records, MAX_WIDTH, MAX_HEIGHT, 0, 3), row_ends=True)
     sending = cocotb.start_soon(tb.source.send(beats[: len(beats) // 2]))
     await ClockCycles(dut.clk, len(beats) // 3)
     sending.cancel()
@@ -197,12 +240,17 @@ async def photographs(dut):
 
 @cocotb.test()
 async def late_row_then_dense_row(dut):
-    """The case where the input waits: a full cell row, then a cell row whose only record
-    is on its last line, then a full cell row at once. The third row needs the first row's
-    bank while that row still drains (started by the second row's record): the input waits
-    for the drain, at most 3 clocks per cell plus one per record, plus 2. (Here the records
-    come back to back; from an NMS the third row's first record comes a line later, which
-    the drain has too.)"""
+    """The content that makes the input wait without row-end beats: a full cell row, then
+    a cell row whose only record is on its last line, then a full cell row. The third row
+    needs the first row's bank while that row still drains (started by the second row's
+    record). Measured three ways (K 15, CELL 16):
+    - back to back, without row-end beats: the wait is at most the drain, 3 clocks per
+      cell plus one per record, plus 2;
+    - at the pixels' clocks (one pixel per clock, as from an NMS), without row-end beats:
+      the drain has one line more, so the wait is that bound less a line (none when a
+      line takes longer than the drain);
+    - at the pixels' clocks with row-end beats: the first row's drain starts at its last
+      line's row-end beat, a cell row ahead: the input never waits."""
     if MAX_HEIGHT < 48 or MAX_PER_CELL < 15:
         return
     tb = TB(dut, idle=0.0, stall=0.0)
@@ -212,9 +260,61 @@ async def late_row_then_dense_row(dut):
     keep = (ys < 16) | (ys >= 32) | ((ys == 31) & (xs == 0))
     scores = tb.np_rng.integers(0, 2**SCORE_BITS, keep.sum())
     records = np.stack([xs[keep], ys[keep], scores], axis=1).astype(np.int64)
+    frame = (records, MAX_WIDTH, 48, 0, 15)
+    bound = -(-MAX_WIDTH // 16) * (3 + 15) + 2
     held = tb.held
-    await tb.run_frames([(records, MAX_WIDTH, 48, 0, 15)], "late row")
-    cells = -(-MAX_WIDTH // 16)
-    bound = cells * (3 + 15) + 2
-    dut._log.info("input held %d clocks (bound %d)", tb.held - held, bound)
-    assert 0 < tb.held - held <= bound, f"held {tb.held - held}, bound {bound}"
+    await tb.run_frames([frame], "late row", row_ends=False)
+    dut._log.info("back to back: the input waited %d clocks (bound %d)", tb.held - held, bound)
+    assert 0 < tb.held - held <= bound, f"waited {tb.held - held}, bound {bound}"
+    held = tb.held
+    await tb.run_frames([frame], "late row, paced", row_ends=False, paced=True)
+    paced_bound = max(0, bound - MAX_WIDTH)
+    dut._log.info("paced: the input waited %d clocks (bound %d)", tb.held - held, paced_bound)
+    assert tb.held - held <= paced_bound, f"waited {tb.held - held}, bound {paced_bound}"
+    held = tb.held
+    await tb.run_frames([frame], "late row, paced, row ends", row_ends=True, paced=True)
+    assert tb.held == held, f"with row-end beats the input waited {tb.held - held} clocks"
+
+
+@cocotb.test()
+async def row_end_starts_the_drain(dut):
+    """A cell row's records leave after its last line's row-end beat, not at the next
+    record or the end of frame: within the drain (3 clocks per cell up to the last cell
+    written, plus one per record) and 2 clocks of pipeline, for each CELL
+    whose rows end before the frame's last line. Row-end beats at lines that do not end
+    a cell row change nothing."""
+    if MAX_HEIGHT < 32:
+        return
+    tb = TB(dut, idle=0.0, stall=0.0)
+    await tb.reset()
+    await ClockCycles(dut.clk, CLEAR_CLOCKS + 2)
+    for cell_log in (0, 1):
+        cell = 16 << cell_log
+        if cell >= MAX_HEIGHT:
+            continue
+        k = min(MAX_PER_CELL, 15)
+        records = tb.random_records(MAX_WIDTH, cell, 0.5, 2**SCORE_BITS - 1)
+        frame = (records, MAX_WIDTH, MAX_HEIGHT, cell_log, k)
+        beats = TB.beats(frame, row_ends=True)
+        first_row_end = next(i for i, b in enumerate(beats) if b["row_end"] and b["y"] == cell - 1)
+        start = len(tb.sink.beats)
+        want = expected(records, cell_log, k)
+        await tb.source.send(beats[: first_row_end + 1])
+        taken = sim_ns()
+        cells = -(-MAX_WIDTH // cell)
+        bound = cells * 3 + len(want) + 2
+        await ClockCycles(dut.clk, bound + 1)
+        got = [(b["x"], b["y"], b["score"]) for b in tb.sink.beats[start:]]
+        assert got == want, record_mismatch(got, want, f"CELL {cell}, after its row end")
+        last = (tb.sink.times[-1] - taken) // PERIOD_NS if want else 0
+        dut._log.info(
+            "CELL %d: %d records, the last %d clocks after the row end (bound %d)",
+            cell,
+            len(want),
+            last,
+            bound,
+        )
+        assert last <= bound, f"CELL {cell}: the last record {last} clocks after, bound {bound}"
+        await tb.source.send(beats[first_row_end + 1 :])
+        await ClockCycles(dut.clk, 20)
+        assert [b["eof"] for b in tb.sink.beats[start + len(want) :]] == [1]

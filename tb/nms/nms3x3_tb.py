@@ -1,5 +1,7 @@
 """cocotb testbench of fastnms_nms_3x3 on its own: arbitrary score maps
-against the golden model's 3x3 rule (fastnms.nms.nms_3x3)."""
+against the golden model's 3x3 rule (fastnms.nms.nms_3x3). With ROW_MARKS,
+also the row-end beats: one after the records of each line y with
+y % 16 == 15 (not the frame's last), before any record of a later line."""
 
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ MAX_WIDTH = GENERICS["MAX_WIDTH"]
 SCORE_BITS = GENERICS["SCORE_BITS"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
+ROW_MARKS = GENERICS.get("ROW_MARKS", False)
 # The core's narrowest frame (7), as the window generator raises it.
 MIN_WIDTH = min_width(7, PPC, LATENCY)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
@@ -28,7 +31,13 @@ STALL = float(os.environ.get("TB_STALL", "0"))
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
         super().__init__(
-            dut, ["x", "y", "score", "eof"], idle, stall, data="score", ppc=PPC, bits=SCORE_BITS
+            dut,
+            ["x", "y", "score", "eof", "row_end"],
+            idle,
+            stall,
+            data="score",
+            ppc=PPC,
+            bits=SCORE_BITS,
         )
         dut._log.info("generics %s", GENERICS)
         self.set_cfg(width=MIN_WIDTH, height=7)
@@ -54,12 +63,39 @@ class TB(VideoTB):
         await self.send_frames(maps, [{"width": m.shape[1], "height": m.shape[0]} for m in maps])
         total = sum(m.size for m in maps)
         await self.wait_eofs(len(maps), 20 * total + 1000)
-        frames = split_records(self.sink.beats)
+        records = [b for b in self.sink.beats if not b["row_end"]]
+        frames = split_records(records)
+        row_ends = split_row_ends(self.sink.beats)
         for i, (scores, got) in enumerate(zip(maps, frames, strict=True)):
             want = [tuple(int(v) for v in r) for r in nms_3x3(scores > 0, scores)]
-            label = f"frame {i} ({scores.shape[1]}x{scores.shape[0]})"
+            height, width = scores.shape
+            label = f"frame {i} ({width}x{height})"
             assert got == want, record_mismatch(got, want, label)
+            lines = range(15, height - 1, 16) if ROW_MARKS else []
+            assert row_ends[i] == [(width - 1, y) for y in lines], (
+                f"{label}: row ends {row_ends[i]}"
+            )
         assert self.err_line == 0 and self.err_frame == 0
+
+
+def split_row_ends(beats: list[dict[str, int]]) -> list[list[tuple[int, int]]]:
+    """Per frame, the row-end beats (x, y), each checked to have score 0 and to come
+    after every record of its line and before every record of a later line."""
+    frames: list[list[tuple[int, int]]] = [[]]
+    last_y = -1
+    for beat in beats:
+        if beat["eof"]:
+            assert not beat["row_end"], beat
+            frames.append([])
+            last_y = -1
+        elif beat["row_end"]:
+            assert beat["score"] == 0 and beat["y"] >= last_y, (beat, last_y)
+            frames[-1].append((beat["x"], beat["y"]))
+            last_y = beat["y"] + 1  # records after it are on later lines
+        else:
+            assert beat["y"] >= last_y, f"record {beat} after the row end of line {last_y - 1}"
+            last_y = beat["y"]
+    return frames
 
 
 @cocotb.test()
@@ -113,7 +149,7 @@ async def densest_survivors(dut):
     tb = TB(dut, idle=0.0, stall=0.0)
     await tb.reset()
     cocotb.start_soon(tb.count_input_waits())
-    height = 12
+    height = 40  # two row ends per frame with ROW_MARKS
     dense = np.ones((height, MAX_WIDTH), dtype=np.int64)
     dense[1::2, 1::2] = 2
     dense[0, :] = dense[-1, :] = dense[:, 0] = dense[:, -1] = 0

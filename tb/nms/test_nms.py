@@ -11,7 +11,10 @@ from tb.harness import run_cocotb
 @pytest.mark.parametrize("score_bits", [8, 12])
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
 def test_nms_3x3(request, score_bits, idle, stall):
+    """With 12-bit scores the block is built with ROW_MARKS (as the core with a budget)."""
     generics = {"MAX_WIDTH": 24, "MAX_HEIGHT": 64, "SCORE_BITS": score_bits}
+    if score_bits == 12:
+        generics["ROW_MARKS"] = True
     run_cocotb(
         "fastnms_nms_3x3",
         "nms3x3_tb",
@@ -25,14 +28,14 @@ def test_nms_3x3(request, score_bits, idle, stall):
     "generics",
     [
         {"MAX_WIDTH": 24, "SCORE_BITS": 8, "PPC": 2, "READ_LATENCY": 2},
-        {"MAX_WIDTH": 64, "SCORE_BITS": 12, "PPC": 4, "READ_LATENCY": 1},
+        {"MAX_WIDTH": 64, "SCORE_BITS": 12, "PPC": 4, "READ_LATENCY": 1, "ROW_MARKS": True},
     ],
     ids=["ppc2", "ppc4"],
 )
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
 def test_nms_3x3_ppc(request, generics, idle, stall):
     """Beats of 2 and 4 scores: random maps, plateaus, and the densest map
-    through the serializer without an input wait."""
+    through the serializer without an input wait (PPC 4 with ROW_MARKS)."""
     run_cocotb(
         "fastnms_nms_3x3",
         "nms3x3_tb",
