@@ -21,16 +21,17 @@
 --
 -- How (docs/fastnms_cell_budget.md): the best K of each cell of the cell row
 -- being filled are kept sorted in one memory word per cell (K entries of a
--- valid bit, score and position in the cell). Each record's word is read, its
--- entries compared with the record (stage B) and the record inserted and the
--- word written back (stage C): one record per clock, the words of the two
+-- valid bit, score and position in the cell). Each record's word is read
+-- through the memory's output register (stage A, two clocks), its entries
+-- compared with the record (stage B) and the record inserted and the word
+-- written back (stage C): one record per clock, the words of the three
 -- records before it forwarded. Two banks: a complete cell row drains from one
 -- (which also empties its words) while the next fills the other. Jobs (drain a
 -- bank, emit an end of frame) queue in order, four at most.
 --
 -- The input waits (a) while the memory is cleared after reset
 -- (ceil(MAX_WIDTH / 16) clocks); (b) when a record opens a cell row while the
--- other bank still drains (a drain takes 3 clocks per cell up to the last cell
+-- other bank still drains (a drain takes 5 + 4 clocks per cell up to the last cell
 -- written plus one per record; without row-end beats it starts at the first
 -- record of the next cell row: the output held back, sparse rows without
 -- row-end beats, or frames back to back), or the job queue is full; (c) with
@@ -266,6 +267,7 @@ begin
     signal i_close   : std_logic; -- the beat is a row-end beat that closes the open cell row
     signal i_log     : log_t;
     signal i_k       : natural range 0 to K_MAX;
+    signal i_in_cell : unsigned(15 downto 0); -- cell_mask(i_log), registered with it
     signal i_last_y  : unsigned(Y_BITS - 1 downto 0);
     signal i_data    : std_logic_vector(D_BITS - 1 downto 0);
 
@@ -314,6 +316,15 @@ begin
     signal jobs_idle : std_logic; -- registered: no job queued or running, none pushed
 
     -- Stage B: the word read, compared.
+    -- Stage A: the record while its word is read (two clocks: the memories' output
+    -- registers cut the block RAM's clock-to-output from the comparisons).
+    signal a_valid : std_logic;
+    signal a_open  : std_logic;
+    signal a_bank  : bank_t;
+    signal a_cell  : addr_t;
+    signal a_entry : entry_t;
+    signal a_mask  : std_logic_vector(0 to K_MAX - 1);
+
     signal b_valid  : std_logic;
     signal b_open   : std_logic;
     signal b_bank   : bank_t;
@@ -322,6 +333,7 @@ begin
     signal b_mask   : std_logic_vector(0 to K_MAX - 1);
     signal b_from_c : std_logic; -- the record in stage C has the same cell
     signal b_from_w : std_logic; -- the record written last clock has the same cell
+    signal b_from_v : std_logic; -- the record written two clocks ago has the same cell
     signal b_word   : word_t;
     signal b_beats  : std_logic_vector(0 to K_MAX - 1);
 
@@ -334,7 +346,11 @@ begin
     signal c_word  : word_t;
     signal c_beats : std_logic_vector(0 to K_MAX - 1);
     signal c_new   : word_t;
-    signal w_word  : word_t;        -- the word stage C wrote last clock
+    signal w_valid : std_logic;     -- stage C wrote last clock: its cell and word
+    signal w_bank  : bank_t;
+    signal w_cell  : addr_t;
+    signal w_word  : word_t;
+    signal v_word  : word_t;        -- the word stage C wrote two clocks ago
 
     -- Memories.
     signal rd_en   : std_logic_vector(0 to 1);
@@ -349,7 +365,7 @@ begin
     signal clear_at : addr_t;
 
     -- Drain.
-    type drain_state_t is (st_idle, st_read, st_load, st_emit, st_eof);
+    type drain_state_t is (st_idle, st_settle, st_read, st_wait, st_load, st_emit, st_eof);
 
     signal d_state : drain_state_t;
     signal d_job   : job_t;
@@ -391,10 +407,11 @@ begin
       a_record := not in_eof and not in_row_end;
       -- A later cell row than the last record's: a differing bit of y above the cell's
       -- (raster order: never before).
-      later := i_open and to_sl(((y_wide xor resize(i_last_y, 16)) and not cell_mask(i_log)) /= 0);
+      -- (A cell row is open only after the frame's first beat: the registered mask holds.)
+      later := i_open and to_sl(((y_wide xor resize(i_last_y, 16)) and not i_in_cell) /= 0);
       -- A row-end beat closes the open cell row at its last line (or past it).
       closed  := i_open and in_row_end and
-                 (later or to_sl((y_wide(7 downto 0) and mask(7 downto 0)) = mask(7 downto 0)));
+                 (later or to_sl((y_wide(7 downto 0) or not i_in_cell(7 downto 0)) = x"FF"));
       i_close <= closed;
       i_data  <= pack(in_eof, in_x, in_y, in_score)
                  & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
@@ -420,8 +437,9 @@ begin
             i_open <= '0';
           end if;
           if i_started = '0' then
-            i_log <= minimum(4, to_integer(in_cell_log));
-            i_k   <= minimum(K_MAX, to_integer(in_per_cell));
+            i_log     <= minimum(4, to_integer(in_cell_log));
+            i_in_cell <= cell_mask(minimum(4, to_integer(in_cell_log)));
+            i_k       <= minimum(K_MAX, to_integer(in_per_cell));
           end if;
         end if;
         if rst = '1' then
@@ -571,21 +589,30 @@ begin
     begin
 
       if rising_edge(clk) then
-        -- B: the record, and where its word comes from (the two records before it
-        -- write their words after this one's read).
-        b_valid  <= insert_now;
-        b_open   <= s_open or s_switch;
-        b_bank   <= target;
-        b_cell   <= s_cell;
-        b_entry  <= '1' & std_logic_vector(s_score) & s_offset;
-        b_from_c <= b_valid and to_sl(b_bank = target and b_cell = s_cell);
-        b_from_w <= c_valid and to_sl(c_bank = target and c_cell = s_cell);
+        -- A: the record, its word being read.
+        a_valid <= insert_now;
+        a_open  <= s_open or s_switch;
+        a_bank  <= target;
+        a_cell  <= s_cell;
+        a_entry <= '1' & std_logic_vector(s_score) & s_offset;
 
         for j in 0 to K_MAX - 1 loop
 
-          b_mask(j) <= to_sl(j < s_k);
+          a_mask(j) <= to_sl(j < s_k);
 
         end loop;
+
+        -- B: the record, and where its word comes from (the three records before it
+        -- write their words at or after this one's read).
+        b_valid  <= a_valid;
+        b_open   <= a_open;
+        b_bank   <= a_bank;
+        b_cell   <= a_cell;
+        b_entry  <= a_entry;
+        b_mask   <= a_mask;
+        b_from_c <= b_valid and to_sl(b_bank = a_bank and b_cell = a_cell);
+        b_from_w <= c_valid and to_sl(c_bank = a_bank and c_cell = a_cell);
+        b_from_v <= w_valid and to_sl(w_bank = a_bank and w_cell = a_cell);
 
         -- C: the word and the comparisons.
         c_valid <= b_valid;
@@ -595,7 +622,11 @@ begin
         c_mask  <= b_mask;
         c_word  <= b_word;
         c_beats <= b_beats;
+        w_valid <= c_valid;
+        w_bank  <= c_bank;
+        w_cell  <= c_cell;
         w_word  <= c_new;
+        v_word  <= w_word;
 
         -- The last cell written of the bank.
         if b_valid = '1' and (b_open = '1' or b_cell > bank_hi(b_bank)) then
@@ -603,8 +634,10 @@ begin
         end if;
 
         if rst = '1' then
+          a_valid <= '0';
           b_valid <= '0';
           c_valid <= '0';
+          w_valid <= '0';
         end if;
       end if;
 
@@ -612,6 +645,7 @@ begin
 
     b_word <= c_new when b_from_c = '1' else
               w_word when b_from_w = '1' else
+              v_word when b_from_v = '1' else
               rd_data(b_bank);
 
     -- The comparisons of stage B against the word stage C is making are made on that
@@ -638,6 +672,8 @@ begin
           end if;
         elsif b_from_w = '1' then
           b_beats(j) <= beats(entry(w_word, j), s);
+        elsif b_from_v = '1' then
+          b_beats(j) <= beats(entry(v_word, j), s);
         else
           b_beats(j) <= beats(entry(rd_data(b_bank), j), s);
         end if;
@@ -668,8 +704,10 @@ begin
 
     end process clear;
 
-    -- ---- drain: the head job's bank cell by cell (read, load and empty, entries one
-    -- per clock), then its end of frame -------------------------------------------------
+    -- ---- drain: the head job's bank cell by cell (read, wait for the output register,
+    -- load and empty, entries one per clock), then its end of frame. A drain starts a
+    -- clock after its job (settle): the bank's last record, three stages behind the
+    -- beat that queued the job, has written its word by the first read --------------
 
     d_last <= to_sl(d_cell = bank_hi(d_job.bank));
 
@@ -684,12 +722,16 @@ begin
             d_cell <= (others => '0');
             d_x0   <= (others => '0');
             if jobs(job_head).drain = '1' then
-              d_state <= st_read;
+              d_state <= st_settle;
             else
               d_state <= st_eof;
             end if;
           end if;
+        elsif d_state = st_settle then
+          d_state <= st_read;
         elsif d_state = st_read then
+          d_state <= st_wait;
+        elsif d_state = st_wait then
           d_state <= st_load;
         elsif d_state = st_load then
           d_word  <= rd_data(d_job.bank);
@@ -757,15 +799,17 @@ begin
 
       for b in 0 to 1 loop
 
-        owns := to_sl(d_state /= st_idle and d_job.drain = '1' and d_job.bank = b);
+        -- (While the drain settles, the bank's last record writes its word.)
+        owns := to_sl(d_state /= st_idle and d_state /= st_settle and d_job.drain = '1' and d_job.bank = b);
+
+        -- Reads run every clock (the read pipeline's enable): a read has no effect.
+        rd_en(b) <= '1';
 
         if owns = '1' then
-          rd_en(b)   <= to_sl(d_state = st_read);
           rd_addr(b) <= d_cell;
           wr_en(b)   <= to_sl(d_state = st_load);
           wr_addr(b) <= d_cell;
         else
-          rd_en(b)   <= insert_now and to_sl(target = b);
           rd_addr(b) <= s_cell;
           wr_en(b)   <= (c_valid and to_sl(c_bank = b)) or clearing;
           wr_addr(b) <= clear_at when clearing = '1' else
@@ -789,7 +833,7 @@ begin
         generic map (
           DEPTH        => CELLS,
           WIDTH        => WORD_BITS,
-          READ_LATENCY => 1,
+          READ_LATENCY => 2,
           STYLE        => "block"
         )
         port map (
