@@ -72,7 +72,7 @@ def test_hard_content(connectivity, rng):
     run([(spiral, rng.integers(0, 9, spiral.shape))], connectivity)
 
 
-@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("connectivity", [pytest.param(4, marks=pytest.mark.slow), 8])
 def test_stack_bound_is_reached_and_holds(connectivity, rng):
     for width in (5, 17, 65, 1920):
         corner = nested_arches(width)

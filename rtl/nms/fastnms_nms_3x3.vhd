@@ -191,9 +191,13 @@ begin
         s1_valid  <= w_valid;
         s1_inside <= w_inside;
         s1_eof    <= w_eof;
-        s1_mark   <= to_sl(ROW_MARKS and is_mark_line(w_y)) and w_eol and not w_eof;
-        s1_x      <= w_x;
-        s1_y      <= w_y;
+        if ROW_MARKS then
+          s1_mark <= to_sl(is_mark_line(w_y)) and w_eol and not w_eof;
+        else
+          s1_mark <= '0';
+        end if;
+        s1_x <= w_x;
+        s1_y <= w_y;
 
         s2_valid <= s1_valid;
         s2_eof   <= s1_eof;

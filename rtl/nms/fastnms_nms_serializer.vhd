@@ -160,7 +160,7 @@ begin
       in_room2  => open,
       in_room3  => open,
       in_spare  => open,
-      in_data   => in_row_end & in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
+      in_data   => (in_eof or in_row_end) & in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
                    std_logic_vector(in_scores),
       out_valid => q_valid,
       out_ready => q_ready,
@@ -174,7 +174,8 @@ begin
   emit    <= cur_valid and rec_ready;
   done    <= emit and cur_last;
   q_ready <= not cur_valid or done;
-  q_items <= (q_data(BEAT_BITS - 1) or q_data(BEAT_BITS - 2)) &
+  -- Bit PPC of a beat's items: its end of frame or row end, stored as one bit.
+  q_items <= q_data(BEAT_BITS - 1) &
              q_data(PPC + PPC * SCORE_BITS - 1 downto PPC * SCORE_BITS);
   rest    <= without_lowest(cur_items);
 

@@ -60,7 +60,7 @@ def test_core_photos(request, score, nms, crops):
 
 # Three cases in `make test`, all six in `make test-full`.
 PPC_CONFIGS = [
-    ("opencv", "3x3", 2),
+    pytest.param("opencv", "3x3", 2, marks=pytest.mark.slow),
     ("opencv", "3x3", 4),
     ("sad", "none", 2),
     pytest.param("sad", "none", 4, marks=pytest.mark.slow),

@@ -66,7 +66,7 @@ def _gravel() -> str:
     return str(next((p for p in images if "gravel" in p.name), images[0]))
 
 
-@pytest.mark.parametrize("connectivity", [pytest.param(4, marks=pytest.mark.slow), 8])
+@pytest.mark.parametrize("connectivity", [pytest.param(c, marks=pytest.mark.slow) for c in (4, 8)])
 def test_nms_region_photo(request, connectivity):
     """A whole photograph's FAST output (gravel 512x512, t = 20, sad): records
     equal to the golden, and at most 1.01 clocks per pixel (the flush pass
