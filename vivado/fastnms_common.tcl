@@ -32,7 +32,7 @@ namespace eval fastnms {
     variable fclk_divide 7
 
     # RTL folders, lowest layer first.
-    variable areas {common fast nms budget core top}
+    variable areas {common fast nms budget orb core top}
 
     # The out-of-context clock constraint (aclk).
     variable ooc_xdc [file join $repo constraints fastnms_ooc.xdc]

@@ -40,6 +40,14 @@ DEEPER = {
     # per clock with the two records before it forwarded, maps into 6 to 7 levels
     # (docs/fastnms_cell_budget.md, *Limits*): not yet at 4.
     "fastnms_cell_budget": 7,
+    "fastnms_budget_insert": 6,
+    # The float32 units' carry chains are not split yet: the rounding increment into
+    # the exponent (mul, add) and the 31-bit magnitude compare and 27-bit add (add)
+    # are 6 to 8 CARRY4 long, and the angle unit adds its division step and
+    # multiplexers (docs/orb_float.md, *Limits*).
+    "fastnms_f32_mul": 8,
+    "fastnms_f32_add": 11,
+    "fastnms_orb_angle": 13,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 

@@ -21,11 +21,9 @@
 --
 -- How (docs/fastnms_cell_budget.md): the best K of each cell of the cell row
 -- being filled are kept sorted in one memory word per cell (K entries of a
--- valid bit, score and position in the cell). Each record's word is read
--- through the memory's output register (stage A, two clocks), its entries
--- compared with the record (stage B) and the record inserted and the word
--- written back (stage C): one record per clock, the words of the three
--- records before it forwarded. Two banks: a complete cell row drains from one
+-- valid bit, score and position in the cell, fastnms_budget_pkg), updated at
+-- one record per clock by fastnms_budget_insert (read, compare, insert, write
+-- back). Two banks: a complete cell row drains from one
 -- (which also empties its words) while the next fills the other. Jobs (drain a
 -- bank, emit an end of frame) queue in order, four at most.
 --
@@ -42,6 +40,7 @@ library ieee;
 
 library work;
   use work.fastnms_pkg.all;
+  use work.fastnms_budget_pkg.all;
 
 entity fastnms_cell_budget is
   generic (
@@ -134,7 +133,7 @@ begin
     constant K_MAX      : positive := MAX_PER_CELL;
     constant CELLS      : positive := (MAX_WIDTH + 15) / 16; -- cells of a row at CELL 16
     constant ADDR_BITS  : positive := clog2(CELLS);
-    constant ENTRY_BITS : positive := 1 + SCORE_BITS + 16;    -- valid, score, y and x in the cell
+    constant ENTRY_BITS : positive := entry_width(SCORE_BITS); -- fastnms_budget_pkg
     constant WORD_BITS  : positive := K_MAX * ENTRY_BITS;     -- entries best first
     constant JOB_SLOTS  : positive := 4;
     -- The input beat after decoding, as the input buffer holds it.
@@ -169,35 +168,6 @@ begin
 
     type jobs_t is array (0 to JOB_SLOTS - 1) of job_t;
 
-    function entry (w : word_t; j : natural) return entry_t is
-    begin
-
-      return w((j + 1) * ENTRY_BITS - 1 downto j * ENTRY_BITS);
-
-    end function entry;
-
-    function valid_of (e : entry_t) return std_logic is
-    begin
-
-      return e(ENTRY_BITS - 1);
-
-    end function valid_of;
-
-    function score_of (e : entry_t) return unsigned is
-    begin
-
-      return unsigned(e(ENTRY_BITS - 2 downto 16));
-
-    end function score_of;
-
-    -- Does entry e rank before a later record of score s (a tie keeps the earlier)?
-    function beats (e : entry_t; s : unsigned) return std_logic is
-    begin
-
-      return valid_of(e) and to_sl(score_of(e) >= s);
-
-    end function beats;
-
     -- The bits of a coordinate inside a cell of 16 << log pixels.
     function cell_mask (log : log_t) return unsigned is
     begin
@@ -205,59 +175,6 @@ begin
       return shift_right(to_unsigned(255, 16), 4 - log);
 
     end function cell_mask;
-
-    -- Stage C's word: the record e inserted where the entries stop beating it, the
-    -- entries after it moved down, entries from index k on (mask) invalid.
-    function inserted (w : word_t; e : entry_t; b : std_logic_vector; mask : std_logic_vector) return word_t is
-      variable result : word_t;
-      variable pick   : entry_t;
-    begin
-
-      for j in 0 to K_MAX - 1 loop
-
-        if b(j) = '1' then
-          pick := entry(w, j);
-        elsif j = 0 then
-          pick := e;
-        elsif b(j - 1) = '1' then
-          pick := e;
-        else
-          pick := entry(w, j - 1);
-        end if;
-
-        pick(ENTRY_BITS - 1)                                   := pick(ENTRY_BITS - 1) and mask(j);
-        result((j + 1) * ENTRY_BITS - 1 downto j * ENTRY_BITS) := pick;
-
-      end loop;
-
-      return result;
-
-    end function inserted;
-
-    -- The word with its first entry gone (the drain's next record comes first).
-    function drop_first (w : word_t) return word_t is
-    begin
-
-      return std_logic_vector(shift_right(unsigned(w), ENTRY_BITS));
-
-    end function drop_first;
-
-    -- The word with every entry invalid (an empty cell): the other bits do not matter.
-    function emptied (w : word_t) return word_t is
-      variable result : word_t;
-    begin
-
-      result := w;
-
-      for j in 0 to K_MAX - 1 loop
-
-        result((j + 1) * ENTRY_BITS - 1) := '0';
-
-      end loop;
-
-      return result;
-
-    end function emptied;
 
     -- Input side: the frame's configuration (its first beat's), the last record's line.
     signal i_take    : std_logic;
@@ -303,7 +220,6 @@ begin
     signal busy      : std_logic_vector(0 to 1); -- a drain of the bank is queued or running
     signal bank_y0   : y_pair_t;
     signal bank_log  : log_pair_t;
-    signal bank_hi   : addr_pair_t;              -- the last cell written
 
     -- Jobs.
     signal jobs      : jobs_t;
@@ -315,42 +231,12 @@ begin
     signal job_pop   : std_logic;
     signal jobs_idle : std_logic; -- registered: no job queued or running, none pushed
 
-    -- Stage B: the word read, compared.
-    -- Stage A: the record while its word is read (two clocks: the memories' output
-    -- registers cut the block RAM's clock-to-output from the comparisons).
-    signal a_valid : std_logic;
-    signal a_open  : std_logic;
-    signal a_bank  : bank_t;
-    signal a_cell  : addr_t;
-    signal a_entry : entry_t;
-    signal a_mask  : std_logic_vector(0 to K_MAX - 1);
-
-    signal b_valid  : std_logic;
-    signal b_open   : std_logic;
-    signal b_bank   : bank_t;
-    signal b_cell   : addr_t;
-    signal b_entry  : entry_t;
-    signal b_mask   : std_logic_vector(0 to K_MAX - 1);
-    signal b_from_c : std_logic; -- the record in stage C has the same cell
-    signal b_from_w : std_logic; -- the record written last clock has the same cell
-    signal b_from_v : std_logic; -- the record written two clocks ago has the same cell
-    signal b_word   : word_t;
-    signal b_beats  : std_logic_vector(0 to K_MAX - 1);
-
-    -- Stage C: the record inserted, the word written.
+    -- The insertion pipeline's write and the banks' last cells written.
     signal c_valid : std_logic;
     signal c_bank  : bank_t;
     signal c_cell  : addr_t;
-    signal c_entry : entry_t;
-    signal c_mask  : std_logic_vector(0 to K_MAX - 1);
-    signal c_word  : word_t;
-    signal c_beats : std_logic_vector(0 to K_MAX - 1);
     signal c_new   : word_t;
-    signal w_valid : std_logic;     -- stage C wrote last clock: its cell and word
-    signal w_bank  : bank_t;
-    signal w_cell  : addr_t;
-    signal w_word  : word_t;
-    signal v_word  : word_t;        -- the word stage C wrote two clocks ago
+    signal bank_hi : addr_pair_t;
 
     -- Memories.
     signal rd_en   : std_logic_vector(0 to 1);
@@ -583,106 +469,32 @@ begin
 
     end process control;
 
-    -- ---- stages B and C: compare, insert, write back ------------------------------------
+    -- ---- stages A to C: read, compare, insert, write back -------------------------------
 
-    stages : process (clk) is
-    begin
-
-      if rising_edge(clk) then
-        -- A: the record, its word being read.
-        a_valid <= insert_now;
-        a_open  <= s_open or s_switch;
-        a_bank  <= target;
-        a_cell  <= s_cell;
-        a_entry <= '1' & std_logic_vector(s_score) & s_offset;
-
-        for j in 0 to K_MAX - 1 loop
-
-          a_mask(j) <= to_sl(j < s_k);
-
-        end loop;
-
-        -- B: the record, and where its word comes from (the three records before it
-        -- write their words at or after this one's read).
-        b_valid  <= a_valid;
-        b_open   <= a_open;
-        b_bank   <= a_bank;
-        b_cell   <= a_cell;
-        b_entry  <= a_entry;
-        b_mask   <= a_mask;
-        b_from_c <= b_valid and to_sl(b_bank = a_bank and b_cell = a_cell);
-        b_from_w <= c_valid and to_sl(c_bank = a_bank and c_cell = a_cell);
-        b_from_v <= w_valid and to_sl(w_bank = a_bank and w_cell = a_cell);
-
-        -- C: the word and the comparisons.
-        c_valid <= b_valid;
-        c_bank  <= b_bank;
-        c_cell  <= b_cell;
-        c_entry <= b_entry;
-        c_mask  <= b_mask;
-        c_word  <= b_word;
-        c_beats <= b_beats;
-        w_valid <= c_valid;
-        w_bank  <= c_bank;
-        w_cell  <= c_cell;
-        w_word  <= c_new;
-        v_word  <= w_word;
-
-        -- The last cell written of the bank.
-        if b_valid = '1' and (b_open = '1' or b_cell > bank_hi(b_bank)) then
-          bank_hi(b_bank) <= b_cell;
-        end if;
-
-        if rst = '1' then
-          a_valid <= '0';
-          b_valid <= '0';
-          c_valid <= '0';
-          w_valid <= '0';
-        end if;
-      end if;
-
-    end process stages;
-
-    b_word <= c_new when b_from_c = '1' else
-              w_word when b_from_w = '1' else
-              v_word when b_from_v = '1' else
-              rd_data(b_bank);
-
-    -- The comparisons of stage B against the word stage C is making are made on that
-    -- word's sources (C's registers), then chosen as C chooses its entries.
-    compare : process (all) is
-
-      variable s : unsigned(SCORE_BITS - 1 downto 0);
-
-    begin
-
-      s := score_of(b_entry);
-
-      for j in 0 to K_MAX - 1 loop
-
-        if b_from_c = '1' then
-          if c_beats(j) = '1' then
-            b_beats(j) <= c_mask(j) and beats(entry(c_word, j), s);
-          elsif j = 0 then
-            b_beats(j) <= c_mask(j) and beats(c_entry, s);
-          elsif c_beats(j - 1) = '1' then
-            b_beats(j) <= c_mask(j) and beats(c_entry, s);
-          else
-            b_beats(j) <= c_mask(j) and beats(entry(c_word, j - 1), s);
-          end if;
-        elsif b_from_w = '1' then
-          b_beats(j) <= beats(entry(w_word, j), s);
-        elsif b_from_v = '1' then
-          b_beats(j) <= beats(entry(v_word, j), s);
-        else
-          b_beats(j) <= beats(entry(rd_data(b_bank), j), s);
-        end if;
-
-      end loop;
-
-    end process compare;
-
-    c_new <= inserted(c_word, c_entry, c_beats, c_mask);
+    insert : entity work.fastnms_budget_insert
+      generic map (
+        CELLS      => CELLS,
+        SCORE_BITS => SCORE_BITS,
+        K_MAX      => K_MAX
+      )
+      port map (
+        clk         => clk,
+        rst         => rst,
+        in_valid    => insert_now,
+        in_open     => s_open or s_switch,
+        in_bank     => target,
+        in_cell     => s_cell,
+        in_entry    => '1' & std_logic_vector(s_score) & s_offset,
+        in_keep     => s_k,
+        rd_data_0   => rd_data(0),
+        rd_data_1   => rd_data(1),
+        wr_valid    => c_valid,
+        wr_bank     => c_bank,
+        wr_cell     => c_cell,
+        wr_word     => c_new,
+        last_cell_0 => bank_hi(0),
+        last_cell_1 => bank_hi(1)
+      );
 
     -- ---- reset: both banks emptied, one word of each per clock -------------------------
 
@@ -737,7 +549,7 @@ begin
           d_word  <= rd_data(d_job.bank);
           d_state <= st_emit;
         elsif d_state = st_emit then
-          if valid_of(entry(d_word, 0)) = '0' then
+          if valid_of(entry(d_word, 0, ENTRY_BITS)) = '0' then
             if d_last = '1' then
               if d_job.eof = '1' then
                 d_state <= st_eof;
@@ -750,7 +562,7 @@ begin
               d_state <= st_read;
             end if;
           elsif o_ready = '1' then
-            d_word <= drop_first(d_word);
+            d_word <= drop_first(d_word, ENTRY_BITS);
           end if;
         elsif o_ready = '1' then -- st_eof
           d_state <= st_idle;
@@ -765,7 +577,8 @@ begin
 
     -- A job ends with its end-of-frame beat, or (without one) after its last cell.
     job_pop <= (to_sl(d_state = st_eof) and o_ready)
-               or (to_sl(d_state = st_emit) and not valid_of(entry(d_word, 0)) and d_last and not d_job.eof);
+               or (to_sl(d_state = st_emit) and not valid_of(entry(d_word, 0, ENTRY_BITS))
+                   and d_last and not d_job.eof);
 
     outputs : process (all) is
 
@@ -773,7 +586,7 @@ begin
 
     begin
 
-      e := entry(d_word, 0);
+      e := entry(d_word, 0, ENTRY_BITS);
 
       if pass = '1' then
         o_valid <= '1';
@@ -818,7 +631,7 @@ begin
 
         -- Draining and clearing write an empty word: only its valid bits matter.
         if owns = '1' or clearing = '1' then
-          wr_data(b) <= emptied(c_new);
+          wr_data(b) <= emptied(c_new, ENTRY_BITS);
         else
           wr_data(b) <= c_new;
         end if;

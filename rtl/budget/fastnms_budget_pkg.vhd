@@ -1,0 +1,110 @@
+-- The keypoint budget's memory word (fastnms_cell_budget): one word per cell,
+-- K entries best first, entry j in bits (j + 1) * E - 1 .. j * E. An entry is
+-- a valid bit, the score, then y and x inside the cell (8 bits each):
+-- E = 1 + SCORE_BITS + 16 bits.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+package fastnms_budget_pkg is
+
+  -- E, the bits of an entry.
+  function entry_width (score_bits : positive) return positive;
+
+  -- Entry j of word w.
+  function entry (w : std_logic_vector; j : natural; e_bits : positive) return std_logic_vector;
+
+  function valid_of (e : std_logic_vector) return std_logic;
+
+  function score_of (e : std_logic_vector) return unsigned;
+
+  -- y (15 .. 8) and x (7 .. 0) inside the cell.
+  function offset_of (e : std_logic_vector) return std_logic_vector;
+
+  -- Does entry e rank before a later record of score s (a tie keeps the earlier)?
+  function beats (e : std_logic_vector; s : unsigned) return std_logic;
+
+  -- The word with its first entry gone (the drain's next record comes first).
+  function drop_first (w : std_logic_vector; e_bits : positive) return std_logic_vector;
+
+  -- The word with every entry invalid (an empty cell): the other bits do not matter.
+  function emptied (w : std_logic_vector; e_bits : positive) return std_logic_vector;
+
+end package fastnms_budget_pkg;
+
+package body fastnms_budget_pkg is
+
+  function entry_width (score_bits : positive) return positive is
+  begin
+
+    return 1 + score_bits + 16;
+
+  end function entry_width;
+
+  function entry (w : std_logic_vector; j : natural; e_bits : positive) return std_logic_vector is
+    alias wv : std_logic_vector(w'length - 1 downto 0) is w;
+  begin
+
+    return wv((j + 1) * e_bits - 1 downto j * e_bits);
+
+  end function entry;
+
+  function valid_of (e : std_logic_vector) return std_logic is
+    alias ev : std_logic_vector(e'length - 1 downto 0) is e;
+  begin
+
+    return ev(e'length - 1);
+
+  end function valid_of;
+
+  function score_of (e : std_logic_vector) return unsigned is
+    alias ev : std_logic_vector(e'length - 1 downto 0) is e;
+  begin
+
+    return unsigned(ev(e'length - 2 downto 16));
+
+  end function score_of;
+
+  function offset_of (e : std_logic_vector) return std_logic_vector is
+    alias ev : std_logic_vector(e'length - 1 downto 0) is e;
+  begin
+
+    return ev(15 downto 0);
+
+  end function offset_of;
+
+  function beats (e : std_logic_vector; s : unsigned) return std_logic is
+  begin
+
+    if valid_of(e) = '1' and score_of(e) >= s then
+      return '1';
+    end if;
+
+    return '0';
+
+  end function beats;
+
+  function drop_first (w : std_logic_vector; e_bits : positive) return std_logic_vector is
+  begin
+
+    return std_logic_vector(shift_right(unsigned(w), e_bits));
+
+  end function drop_first;
+
+  function emptied (w : std_logic_vector; e_bits : positive) return std_logic_vector is
+    variable result : std_logic_vector(w'length - 1 downto 0);
+  begin
+
+    result := w;
+
+    for j in 0 to w'length / e_bits - 1 loop
+
+      result((j + 1) * e_bits - 1) := '0';
+
+    end loop;
+
+    return result;
+
+  end function emptied;
+
+end package body fastnms_budget_pkg;

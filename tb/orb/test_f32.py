@@ -1,0 +1,29 @@
+"""pytest entry: the float32 units under GHDL against golden/float32.py."""
+
+import pytest
+
+from tb.harness import run_cocotb
+
+
+@pytest.mark.parametrize("unit", ["mul", "add"])
+def test_f32_unit(request, unit):
+    run_cocotb(
+        f"fastnms_f32_{unit}",
+        "f32_tb",
+        {},
+        env={"TB_UNIT": unit, "TB_COUNT": "100000"},
+        name=request.node.nodeid,
+    )
+
+
+@pytest.mark.parametrize(
+    "count", [1000, pytest.param(20000, marks=pytest.mark.slow)], ids=["1000", "20000"]
+)
+def test_orb_angle(request, count):
+    run_cocotb(
+        "fastnms_orb_angle",
+        "angle_tb",
+        {},
+        env={"TB_COUNT": str(count)},
+        name=request.node.nodeid,
+    )
