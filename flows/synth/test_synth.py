@@ -12,6 +12,7 @@ from flows.synth.synth import (
     flip_flops_reading,
     ghdl_synth,
     levels_by_register,
+    netlist_problems,
     summary,
     yosys_xc7,
 )
@@ -44,7 +45,7 @@ DEEPER = {
     # The float32 units' carry chains are not split yet: the rounding increment into
     # the exponent (mul, add) and the 31-bit magnitude compare and 27-bit add (add)
     # are 6 to 8 CARRY4 long, and the angle unit adds its division step and
-    # multiplexers (docs/orb_float.md, *Limits*).
+    # multiplexers (docs/orb_rtl.md, *Limits*).
     "fastnms_f32_mul": 8,
     "fastnms_f32_add": 11,
     "fastnms_orb_angle": 13,
@@ -70,6 +71,8 @@ def _top_without_vivado_attributes():
 def test_entity_synthesizes_without_latches(entity):
     netlist, messages = ghdl_synth(entity)
     assert "latch" not in messages.lower(), messages
+    problems = netlist_problems(netlist, entity)
+    assert not problems, problems
     cells = yosys_xc7(netlist, entity)
     print(entity, cells)
     assert not any(cells.get(c) for c in LATCHES), f"latches: {cells}"

@@ -58,8 +58,6 @@ architecture rtl of fastnms_budget_insert is
 
   subtype flags_t is std_logic_vector(0 to K_MAX - 1);
 
-  type addr_pair_t is array (0 to 1) of addr_t;
-
   -- Stage C's word: the record e inserted where the entries stop beating it, the
   -- entries after it moved down, entries from index k on (mask) invalid.
   function inserted (w : word_t; e : entry_t; b : flags_t; mask : flags_t) return word_t is
@@ -126,7 +124,8 @@ architecture rtl of fastnms_budget_insert is
   signal w_word  : word_t;
   signal v_word  : word_t;    -- the word stage C wrote two clocks ago
 
-  signal last_cell : addr_pair_t;
+  signal last_0 : addr_t;
+  signal last_1 : addr_t;
 
 begin
 
@@ -177,9 +176,13 @@ begin
       w_word  <= c_new;
       v_word  <= w_word;
 
-      -- The last cell written of the bank.
-      if b_valid = '1' and (b_open = '1' or b_cell > last_cell(b_bank)) then
-        last_cell(b_bank) <= b_cell;
+      -- The last cell written of each bank (one register each: GHDL 2.0's synthesis
+      -- drops the flip-flops of an array element indexed by a signal here).
+      if b_valid = '1' and b_bank = 0 and (b_open = '1' or b_cell > last_0) then
+        last_0 <= b_cell;
+      end if;
+      if b_valid = '1' and b_bank = 1 and (b_open = '1' or b_cell > last_1) then
+        last_1 <= b_cell;
       end if;
 
       if rst = '1' then
@@ -240,7 +243,7 @@ begin
   wr_bank     <= c_bank;
   wr_cell     <= c_cell;
   wr_word     <= c_new;
-  last_cell_0 <= last_cell(0);
-  last_cell_1 <= last_cell(1);
+  last_cell_0 <= last_0;
+  last_cell_1 <= last_1;
 
 end architecture rtl;

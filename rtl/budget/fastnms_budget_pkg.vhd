@@ -76,11 +76,7 @@ package body fastnms_budget_pkg is
   function beats (e : std_logic_vector; s : unsigned) return std_logic is
   begin
 
-    if valid_of(e) = '1' and score_of(e) >= s then
-      return '1';
-    end if;
-
-    return '0';
+    return valid_of(e) and (score_of(e) ?>= s);
 
   end function beats;
 

@@ -231,7 +231,9 @@ begin
     signal job_pop   : std_logic;
     signal jobs_idle : std_logic; -- registered: no job queued or running, none pushed
 
-    -- The insertion pipeline's write and the banks' last cells written.
+    -- The insertion pipeline's record, its write and the banks' last cells written.
+    signal s_first : std_logic; -- the record opens a cell row
+    signal s_entry : entry_t;
     signal c_valid : std_logic;
     signal c_bank  : bank_t;
     signal c_cell  : addr_t;
@@ -471,6 +473,9 @@ begin
 
     -- ---- stages A to C: read, compare, insert, write back -------------------------------
 
+    s_first <= s_open or s_switch;
+    s_entry <= '1' & std_logic_vector(s_score) & s_offset;
+
     insert : entity work.fastnms_budget_insert
       generic map (
         CELLS      => CELLS,
@@ -481,10 +486,10 @@ begin
         clk         => clk,
         rst         => rst,
         in_valid    => insert_now,
-        in_open     => s_open or s_switch,
+        in_open     => s_first,
         in_bank     => target,
         in_cell     => s_cell,
-        in_entry    => '1' & std_logic_vector(s_score) & s_offset,
+        in_entry    => s_entry,
         in_keep     => s_k,
         rd_data_0   => rd_data(0),
         rd_data_1   => rd_data(1),

@@ -11,7 +11,7 @@
 --      float32 multiplier and one adder (fastnms_f32_mul, fastnms_f32_add);
 --   3. 90 - a if |m01| > |m10|, then 180 - a if m10 < 0, then 360 - a if m01 < 0.
 -- A keypoint takes ANGLE_CLOCKS clocks at most from its input to its result
--- (docs/orb_float.md gives the count); the result waits for out_ready.
+-- (docs/orb_rtl.md gives the count); the result waits for out_ready.
 --
 -- Domain: |m01|, |m10| < 2**20 (ORB's moments reach 624 240).
 library ieee;

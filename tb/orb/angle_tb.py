@@ -19,7 +19,7 @@ from fastnms.golden.orb import MOMENT_MAX
 from tb.stream import StreamSink, StreamSource, sim_ns, value
 
 COUNT = int(os.environ["TB_COUNT"])
-# docs/orb_float.md: the most clocks from moments taken to angle offered: 5 fixed
+# docs/orb_rtl.md: the most clocks from moments taken to angle offered: 5 fixed
 # (order, count, shift, round, result), 26 quotient bits, 5 per multiply (5 of them),
 # 8 per add (3, and up to 3 quadrant steps).
 ANGLE_CLOCKS = 5 + 26 + 5 * 5 + 8 * 6

@@ -1,4 +1,5 @@
-"""pytest entry: the float32 units under GHDL against golden/float32.py."""
+"""pytest entry: the ORB units under GHDL (float32 multiplier and adder, angle, blur)
+against the golden model."""
 
 import pytest
 
@@ -25,5 +26,15 @@ def test_orb_angle(request, count):
         "angle_tb",
         {},
         env={"TB_COUNT": str(count)},
+        name=request.node.nodeid,
+    )
+
+
+def test_orb_blur(request):
+    run_cocotb(
+        "fastnms_orb_blur",
+        "blur_tb",
+        {},
+        env={"TB_COUNT": "20000"},
         name=request.node.nodeid,
     )
