@@ -18,6 +18,9 @@ library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
+library work;
+  use work.fastnms_f32_pkg.all;
+
 entity fastnms_f32_add is
   port (
     clk       : in    std_logic;
@@ -134,7 +137,6 @@ begin
     variable lost  : unsigned(25 downto 0);
     variable q     : unsigned(26 downto 0);
     variable norm  : unsigned(26 downto 0);
-    variable mag   : unsigned(30 downto 0);
 
   begin
 
@@ -213,13 +215,8 @@ begin
       s6_kept  <= norm(26 downto 3);
       s6_up    <= norm(2) and (norm(1) or norm(0) or s5_sticky or norm(3));
 
-      mag      := shift_left(resize(unsigned(s6_field(7 downto 0)), 31), 23) + s6_kept + unsigned'(0 => s6_up);
       s7_valid <= s6_valid;
-      if s6_zero = '1' then
-        s7_s <= s6_sign & (30 downto 0 => '0');
-      else
-        s7_s <= s6_sign & std_logic_vector(mag);
-      end if;
+      s7_s     <= packed(s6_sign, s6_zero, unsigned(s6_field(7 downto 0)), s6_kept, s6_up);
 
       if rst = '1' then
         s1_valid <= '0';
@@ -240,9 +237,7 @@ begin
 
     if rising_edge(clk) then
       if in_valid = '1' then
-        assert (in_a(30 downto 23) /= x"00" or in_a(22 downto 0) = (22 downto 0 => '0'))
-               and (in_b(30 downto 23) /= x"00" or in_b(22 downto 0) = (22 downto 0 => '0'))
-               and in_a(30 downto 23) /= x"FF" and in_b(30 downto 23) /= x"FF"
+        assert in_domain(in_a) and in_domain(in_b)
           report "fastnms_f32_add: subnormal, infinite or NaN operand (not an ORB value)"
           severity error;
       end if;

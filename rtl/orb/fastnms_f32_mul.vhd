@@ -11,6 +11,9 @@ library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
+library work;
+  use work.fastnms_f32_pkg.all;
+
 entity fastnms_f32_mul is
   port (
     clk       : in    std_logic;
@@ -60,7 +63,6 @@ begin
     variable guard  : std_logic;
     variable sticky : std_logic;
     variable kept   : unsigned(23 downto 0);
-    variable mag    : unsigned(30 downto 0);
 
   begin
 
@@ -98,14 +100,8 @@ begin
       s3_kept  <= kept;
       s3_up    <= guard and (sticky or kept(0));
 
-      -- A carry out of the significand on rounding carries into the exponent.
-      mag      := shift_left(resize(unsigned(s3_field(7 downto 0)), 31), 23) + s3_kept + unsigned'(0 => s3_up);
       s4_valid <= s3_valid;
-      if s3_zero = '1' then
-        s4_p <= s3_sign & (30 downto 0 => '0');
-      else
-        s4_p <= s3_sign & std_logic_vector(mag);
-      end if;
+      s4_p     <= packed(s3_sign, s3_zero, unsigned(s3_field(7 downto 0)), s3_kept, s3_up);
 
       if rst = '1' then
         s1_valid <= '0';
@@ -123,9 +119,7 @@ begin
 
     if rising_edge(clk) then
       if in_valid = '1' then
-        assert (in_a(30 downto 23) /= x"00" or in_a(22 downto 0) = (22 downto 0 => '0'))
-               and (in_b(30 downto 23) /= x"00" or in_b(22 downto 0) = (22 downto 0 => '0'))
-               and in_a(30 downto 23) /= x"FF" and in_b(30 downto 23) /= x"FF"
+        assert in_domain(in_a) and in_domain(in_b)
           report "fastnms_f32_mul: subnormal, infinite or NaN operand (not an ORB value)"
           severity error;
       end if;

@@ -20,6 +20,7 @@ library ieee;
 
 library work;
   use work.fastnms_pkg.all;
+  use work.fastnms_f32_pkg.all;
 
 entity fastnms_orb_angle is
   port (
@@ -36,8 +37,6 @@ entity fastnms_orb_angle is
 end entity fastnms_orb_angle;
 
 architecture rtl of fastnms_orb_angle is
-
-  subtype f32_t is std_logic_vector(31 downto 0);
 
   -- atan_f32's constants, each the float literal times (float)(180/CV_PI) in float32.
   constant P1   : f32_t := x"4265226F"; -- 57.283627
@@ -200,8 +199,7 @@ begin
           below := to_sl(rest /= 0);
           field := to_unsigned(125 + num_bits - den_bits, 8);
         end if;
-        c     <= std_logic_vector(shift_left(resize(field, 32), 23)
-                 + kept + unsigned'(0 => guard and (below or kept(0))));
+        c     <= packed('0', '0', field, kept, guard and (below or kept(0)));
         step  <= 0;
         state <= st_issue;
       elsif state = st_issue then
