@@ -10,7 +10,7 @@
 --   2. the polynomial ((((p7 c2 + p5) c2 + p3) c2 + p1) c), c2 = c c, on one
 --      float32 multiplier and one adder (fastnms_f32_mul, fastnms_f32_add);
 --   3. 90 - a if |m01| > |m10|, then 180 - a if m10 < 0, then 360 - a if m01 < 0.
--- A keypoint takes ANGLE_CLOCKS clocks at most from its input to its result
+-- A keypoint takes at most 104 clocks from its input to its result
 -- (docs/orb_rtl.md gives the count); the result waits for out_ready.
 --
 -- Domain: |m01|, |m10| < 2**20 (ORB's moments reach 624 240).
