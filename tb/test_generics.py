@@ -26,6 +26,7 @@ ILLEGAL = {
     "fastnms_nms_serializer": ({"PPC": 3}, "PPC must be 2 or 4"),
     "fastnms_cell_budget": ({"MAX_PER_CELL": 16}, "MAX_PER_CELL must be 0 .. 15"),
     "fastnms_budget_insert": ({"K_MAX": 16}, "K_MAX must be 1 .. 15"),
+    "fastnms_orb_rotate": ({"LANES": 3}, "LANES must be 1, 2, 4, 8 or 16"),
     "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
     "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
     "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),

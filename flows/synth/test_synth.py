@@ -49,6 +49,11 @@ DEEPER = {
     "fastnms_f32_mul": 8,
     "fastnms_f32_add": 11,
     "fastnms_orb_angle": 13,
+    # The rotation's table fill: the rounding of |k| times a significand and the
+    # entry's 32-bit add are one carry chain each (docs/orb_rtl.md, *Limits*); a
+    # point's coordinate (fastnms_orb_round_point) takes 5 in its last stage.
+    "fastnms_orb_rotate": 13,
+    "fastnms_orb_round_point": 5,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
@@ -183,6 +188,7 @@ def probe_cells(entity: str, generics: dict[str, object], tmp_path: Path) -> dic
     return cells
 
 
+@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
 @pytest.mark.parametrize(
     ("key_bits", "order_flag", "levels"),
     [(34, False, 5), (30, False, 5), (12, True, 3), (8, True, 3)],
@@ -202,6 +208,7 @@ def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     assert by_register["a"] == levels and by_register["a_r"] == 0, by_register
 
 
+@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
 @pytest.mark.parametrize(("key_bits", "levels"), [(34, 4), (30, 4), (12, 2)])
 def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     """A region key comparison as a stage of its own (two key registers in, the result a
@@ -213,6 +220,7 @@ def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
 @pytest.mark.parametrize(
     ("score_bits", "compared_ahead", "levels"),
     [(12, False, 6), (8, False, 7), (12, True, 3), (8, True, 3)],
@@ -262,6 +270,7 @@ def test_key_flags_depth(decided_ahead, pixel_ahead, levels, tmp_path):
     assert cells["logic_levels"] == levels, cells
 
 
+@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_step_control_depth(connectivity, tmp_path):
     """The region NMS step's control alone (its flags and decisions, from registered

@@ -21,7 +21,9 @@ from fastnms.testing import images as testimages
 
 VARIANTS = [(s, n) for s in SCORES for n in NMS_MODES]
 IDS = [f"{s}-{n}" for s, n in VARIANTS]
-QUICK_PAIRS = {("opencv", "3x3"), ("sad", "none"), ("sad", "region4"), ("opencv", "region8")}
+QUICK_PAIRS = {("opencv", "3x3"), ("sad", "region4")}
+# One photograph per NMS in make test (the region NMS with the sad score, the cheaper).
+QUICK_PHOTOS = {("opencv", "3x3"), ("sad", "none"), ("sad", "region4"), ("sad", "region8")}
 
 
 def mixed_frames(rng: np.random.Generator) -> list[tuple[np.ndarray, int]]:
@@ -98,7 +100,8 @@ def test_budget_at_full_hd(ppc: int, rng, seed):
         print(f"PPC {ppc}, budget {budget}: {[len(f.records) for f in result.frames]} records")
 
 
-# make test runs each NMS once (alternating scores); make test-full every pair.
+# make test runs 3x3 and a region NMS (none and region8 through the photographs below);
+# make test-full every pair.
 ENGINE_PAIRS = [
     pytest.param(s, n, id=f"{s}-{n}", marks=[] if (s, n) in QUICK_PAIRS else [pytest.mark.slow])
     for s, n in VARIANTS
@@ -124,7 +127,10 @@ def test_engines_agree(score: str, nms: str, rng, seed):
     assert results["busy"].cycles > results["free"].cycles
 
 
-@pytest.mark.parametrize("score", SCORES)
+# make test: the opencv score (the sad score under slow).
+@pytest.mark.parametrize(
+    "score", [pytest.param(s, marks=[] if s == "opencv" else [pytest.mark.slow]) for s in SCORES]
+)
 def test_engines_four_pixels_per_clock(score: str, rng, seed):
     """PPC 4 (opencv/sad + 3x3, MAX 1920x1080): both engines agree with idles and
     stalls; without them every frame after the first takes its W x H / 4 beats
@@ -202,7 +208,13 @@ def test_bit_patterns_are_periodic():
     assert stalled.input_stalls == free.input_stalls
 
 
-@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=IDS)
+PHOTO_PAIRS = [
+    pytest.param(s, n, id=f"{s}-{n}", marks=[] if (s, n) in QUICK_PHOTOS else [pytest.mark.slow])
+    for s, n in VARIANTS
+]
+
+
+@pytest.mark.parametrize(("score", "nms"), PHOTO_PAIRS)
 def test_photograph_1920x1080(score: str, nms: str, seed):
     """A real photograph scaled to 1920x1080 through the top, at two thresholds,
     back to back: the golden model's records; for the 3x3 and none variants,

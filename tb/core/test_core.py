@@ -35,14 +35,26 @@ def test_core_generated(request, score, nms):
     )
 
 
-# The smallest photograph crop in `make test` (whole photographs go through
-# the top with the fast engine there: sim/tests/test_engines.py), all six in
+# The smallest photograph crop in `make test` for one configuration per NMS and
+# score (whole photographs go through the top with the fast engine there:
+# sim/tests/test_engines.py), all six crops of every configuration in
 # `make test-full`.
-CROPS = [1, pytest.param(6, marks=pytest.mark.slow)]
+QUICK_PHOTO_CONFIGS = {
+    ("opencv", "3x3"),
+    ("opencv", "none"),
+    ("sad", "region4"),
+    ("opencv", "region8"),
+}
+PHOTO_CASES = [
+    pytest.param(
+        s, n, c, marks=[] if c == 1 and (s, n) in QUICK_PHOTO_CONFIGS else [pytest.mark.slow]
+    )
+    for s, n in CONFIGS
+    for c in (1, 6)
+]
 
 
-@pytest.mark.parametrize("crops", CROPS)
-@pytest.mark.parametrize(("score", "nms"), CONFIGS)
+@pytest.mark.parametrize(("score", "nms", "crops"), PHOTO_CASES)
 def test_core_photos(request, score, nms, crops):
     run_cocotb(
         "fastnms_core",

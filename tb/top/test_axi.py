@@ -23,7 +23,15 @@ VARIANTS = [
 ]
 
 
-@pytest.mark.parametrize(("score", "nms"), VARIANTS, ids=[f"{s}-{n}" for s, n in VARIANTS])
+# make test: each NMS once (region4 in test_axi_robustness); every variant in make test-full.
+QUICK_VARIANTS = {("opencv", "3x3"), ("sad", "none"), ("sad", "region8")}
+FRAME_CASES = [
+    pytest.param(s, n, id=f"{s}-{n}", marks=[] if (s, n) in QUICK_VARIANTS else [pytest.mark.slow])
+    for s, n in VARIANTS
+]
+
+
+@pytest.mark.parametrize(("score", "nms"), FRAME_CASES)
 def test_axi_frames(request, score, nms):
     """Registers, generated images back to back with AXI-Lite reconfiguration,
     the empty frame and the score video, with input idles and output stalls."""

@@ -1,0 +1,504 @@
+-- ORB's rotated sampling pattern: for each keypoint's cos and sin (float32
+-- bits), the 512 points of bit_pattern_31_ rotated as OpenCV rotates them,
+-- cvRound(fl(fl(px a) - fl(py b))), cvRound(fl(fl(px b) + fl(py a))), equal to
+-- golden/float32.py's rotate, LANES points per clock. The method is the fixed
+-- point one of golden/rotate_fixed.py:
+--   1. table fill, once per keypoint, one k per clock (k = -13 .. 12): the float
+--      products fl(k a) and fl(k b) (the 24-bit significand times |k|, rounded
+--      to 24 bits, shifted onto a grid of 2**-26, truncated with a sticky bit
+--      below 2**-3) into the tables PA = fl(k a) + 1/4, PB = fl(k b) + 1/4 and
+--      NB = -fl(k b) + 1/4;
+--   2. per point and coordinate, two table reads and fastnms_orb_round_point:
+--      x = round(PA[px] + NB[py]), y = round(PB[px] + PA[py]).
+-- The tables are double-buffered (two banks), so the fill of the next keypoint
+-- (FILL_CLOCKS) overlaps the reading of this one (512 / LANES clocks): a
+-- keypoint every max(512 / LANES, FILL_CLOCKS + 1) clocks while out_ready stays
+-- high. Each read port is a fastnms_ram_sdp of 64 x 33 bits in distributed RAM,
+-- four per lane.
+--
+-- Output: point p = step * LANES + l in lane l (bits 6 l + 5 .. 6 l of out_dx,
+-- out_dy, two's complement, |d| <= 18); out_first and out_last mark a
+-- keypoint's first and last step. Points 2i and 2i + 1 are the ends of bit i.
+-- Domain: |cos|, |sin| <= 1, each 0 or at least 2**-27 in magnitude (the values
+-- fastnms_orb_cos_sin gives); simulation reports anything else.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+  use work.fastnms_orb_pattern_pkg.all;
+
+entity fastnms_orb_rotate is
+  generic (
+    LANES : positive := 8
+  );
+  port (
+    clk       : in    std_logic;
+    rst       : in    std_logic;
+    in_valid  : in    std_logic;
+    in_ready  : out   std_logic;
+    in_cos    : in    std_logic_vector(31 downto 0);
+    in_sin    : in    std_logic_vector(31 downto 0);
+    out_valid : out   std_logic;
+    out_ready : in    std_logic;
+    out_first : out   std_logic;
+    out_last  : out   std_logic;
+    out_dx    : out   std_logic_vector(6 * LANES - 1 downto 0);
+    out_dy    : out   std_logic_vector(6 * LANES - 1 downto 0)
+  );
+end entity fastnms_orb_rotate;
+
+architecture rtl of fastnms_orb_rotate is
+
+  constant STEPS    : positive              := ORB_POINTS / LANES;
+  constant ENTRIES  : positive              := ORB_COORD_MAX - ORB_COORD_MIN + 1;
+  constant FRACTION : natural               := 26;
+  constant QUARTER  : unsigned(31 downto 0) := shift_left(to_unsigned(1, 32), FRACTION - 2);
+  -- Fill: accept, then product, round, shift, entries; the last entry written.
+  constant FILL_STAGES : positive := 4;
+  constant FILL_CLOCKS : positive := ENTRIES + FILL_STAGES + 1;
+  -- fastnms_ram_sdp's read, then fastnms_orb_round_point.
+  constant ROUND_LATENCY : positive := 5;
+  constant READ_LATENCY  : positive := 1 + ROUND_LATENCY;
+
+  subtype entry_t is std_logic_vector(32 downto 0); -- sticky & two's complement value
+
+  subtype index_t is unsigned(4 downto 0);
+
+  type index_rom_t is array (0 to STEPS - 1) of index_t;
+
+  -- Table index k - ORB_COORD_MIN of coordinate c (0: x, 1: y) of lane l's point at
+  -- each step.
+  function coordinate_rom (l : natural; c : natural) return index_rom_t is
+    variable rom : index_rom_t;
+  begin
+
+    for s in rom'range loop
+
+      rom(s) := to_unsigned(ORB_PATTERN(2 * (s * LANES + l) + c) - ORB_COORD_MIN, 5);
+
+    end loop;
+
+    return rom;
+
+  end function coordinate_rom;
+
+  -- A float32 factor (cos or sin) taken apart for the products.
+  type factor_t is record
+    negative    : std_logic;
+    zero        : std_logic;
+    significand : unsigned(23 downto 0);
+    left        : natural range 0 to 3;  -- shift onto the grid: left ...
+    right       : natural range 0 to 31; -- ... or right, with a sticky bit
+  end record factor_t;
+
+  function factor (f : std_logic_vector(31 downto 0)) return factor_t is
+    variable r : factor_t;
+    variable e : integer;
+  begin
+
+    e             := to_integer(unsigned(f(30 downto 23)));
+    r.negative    := f(31);
+    r.zero        := '1' when e = 0 else '0';
+    r.significand := unsigned('1' & f(22 downto 0));
+    -- fl(k c) = rounded * 2**(e - 150): on the grid, rounded * 2**(e - 150 + 26).
+    r.left  := 0;
+    r.right := 0;
+
+    if e - 150 + FRACTION >= 0 then
+      r.left := minimum(e - 150 + FRACTION, 3);
+    else
+      r.right := minimum(150 - FRACTION - e, 31);
+    end if;
+
+    return r;
+
+  end function factor;
+
+  -- |k| in 4 bits (GHDL 2.0's synthesis has no integer abs).
+  function magnitude (k : integer) return unsigned is
+  begin
+
+    if k < 0 then
+      return to_unsigned(-k, 4);
+    end if;
+
+    return to_unsigned(k, 4);
+
+  end function magnitude;
+
+  -- |k| c's significand rounded to 24 significant bits (nearest even), as an
+  -- integer below 2**29.
+  function rounded_product (p : unsigned(27 downto 0)) return unsigned is
+    variable drop  : natural range 0 to 4;
+    variable kept  : unsigned(27 downto 0);
+    variable guard : std_logic;
+    variable rest  : boolean;
+  begin
+
+    drop := 0;
+
+    for b in 24 to 27 loop
+
+      if p(b) = '1' then
+        drop := b - 23;
+      end if;
+
+    end loop;
+
+    if drop = 0 then
+      return '0' & p;
+    end if;
+
+    kept  := shift_right(p, drop);
+    guard := p(drop - 1);
+    rest  := drop >= 2 and (p and shift_right(x"FFFFFFF", 28 - (drop - 1))) /= 0;
+
+    if guard = '1' and (rest or kept(0) = '1') then
+      kept := kept + 1;
+    end if;
+
+    return shift_left('0' & kept, drop);
+
+  end function rounded_product;
+
+  -- 0 or a magnitude in 2**-27 .. 1 (simulation checks).
+  function in_domain (f : std_logic_vector(31 downto 0)) return boolean is
+    variable e : natural;
+  begin
+
+    e := to_integer(unsigned(f(30 downto 23)));
+    return f(30 downto 0) = (30 downto 0 => '0') or (e >= 100 and e <= 126) or
+           f(30 downto 0) = "011" & x"F800000";
+
+  end function in_domain;
+
+  -- The entry of fl(k c) on the grid (mag, sticky) with sign negative, plus 1/4:
+  -- floor(-m) = -(floor(m) + sticky) = not floor(m) + 1 - sticky.
+  function entry (negative : std_logic; mag : unsigned(31 downto 0); sticky : std_logic)
+    return entry_t is
+  begin
+
+    if negative = '1' then
+      return sticky & std_logic_vector(QUARTER + not mag + unsigned'(0 => not sticky));
+    end if;
+
+    return sticky & std_logic_vector(QUARTER + mag);
+
+  end function entry;
+
+  -- Accept and fill.
+  signal filling   : std_logic; -- from accept to the last write
+  signal fill_k    : natural range 0 to ENTRIES - 1;
+  signal fill_next : std_logic; -- a k enters the pipeline
+  signal fill_bank : std_logic;
+  signal fa        : factor_t;
+  signal fb        : factor_t;
+  -- Fill pipeline: product (1), rounded (2), on the grid (3), entries (4).
+  signal f_valid  : std_logic_vector(1 to FILL_STAGES);
+  signal f_last   : std_logic_vector(1 to FILL_STAGES);
+  signal f_neg_k  : std_logic;
+  signal prod_a   : unsigned(27 downto 0);
+  signal prod_b   : unsigned(27 downto 0);
+  signal r_neg_a  : std_logic;
+  signal r_neg_b  : std_logic;
+  signal round_a  : unsigned(28 downto 0);
+  signal round_b  : unsigned(28 downto 0);
+  signal g_neg_a  : std_logic;
+  signal g_neg_b  : std_logic;
+  signal mag_a    : unsigned(31 downto 0);
+  signal mag_b    : unsigned(31 downto 0);
+  signal sticky_a : std_logic;
+  signal sticky_b : std_logic;
+
+  type index_pipe_t is array (1 to FILL_STAGES) of index_t;
+
+  signal f_index : index_pipe_t;
+  signal wr_addr : unsigned(5 downto 0);
+  signal wr_pa   : entry_t;
+  signal wr_pb   : entry_t;
+  signal wr_nb   : entry_t;
+
+  -- Banks: full from the last write of a table to the last read of it (one
+  -- register per bank: GHDL 2.0's synthesis drops the flip-flops of an array
+  -- element indexed by a signal).
+  signal full_0     : std_logic;
+  signal full_1     : std_logic;
+  signal fill_full  : std_logic;
+  signal read_full  : std_logic;
+  signal read_bank  : std_logic;
+  signal step       : natural range 0 to STEPS - 1;
+  signal advance    : std_logic;
+  signal issue      : std_logic;
+  signal valid_pipe : std_logic_vector(1 to READ_LATENCY);
+  signal first_pipe : std_logic_vector(1 to READ_LATENCY);
+  signal last_pipe  : std_logic_vector(1 to READ_LATENCY);
+
+  -- fl(k c) on the grid: its magnitude and sticky bit.
+
+  procedure on_grid (
+    r             : unsigned(28 downto 0);
+    f             : factor_t;
+    signal mag    : out unsigned(31 downto 0);
+    signal sticky : out std_logic
+  ) is
+    variable dropped : unsigned(28 downto 0);
+  begin
+
+    dropped := r and (shift_left(to_unsigned(1, 29), f.right) - 1);
+
+    if f.zero = '1' then
+      mag    <= (others => '0');
+      sticky <= '0';
+    elsif f.right = 0 then
+      mag    <= shift_left(resize(r, 32), f.left);
+      sticky <= '0';
+    else
+      mag <= resize(shift_right(r, f.right), 32);
+      sticky <= '1' when dropped /= 0 else '0';
+    end if;
+
+  end procedure on_grid;
+
+begin
+
+  assert LANES = 1 or LANES = 2 or LANES = 4 or LANES = 8 or LANES = 16
+    report "fastnms_orb_rotate: LANES must be 1, 2, 4, 8 or 16 (a power of two dividing 512)"
+    severity failure;
+
+  fill_full <= full_1 when fill_bank = '1' else
+               full_0;
+  read_full <= full_1 when read_bank = '1' else
+               full_0;
+  in_ready  <= not filling and not fill_full;
+
+  fill : process (clk) is
+
+    variable k : integer;
+
+  begin
+
+    if rising_edge(clk) then
+      -- 1: |k| times the significands.
+      k                        := fill_k + ORB_COORD_MIN;
+      f_valid                  <= fill_next & f_valid(1 to FILL_STAGES - 1);
+      f_last(1)                <= '1' when fill_k = ENTRIES - 1 else '0';
+      f_last(2 to FILL_STAGES) <= f_last(1 to FILL_STAGES - 1);
+      f_index                  <= to_unsigned(fill_k, 5) & f_index(1 to FILL_STAGES - 1);
+      f_neg_k                  <= '1' when k < 0 else '0';
+      prod_a                   <= resize(magnitude(k) * fa.significand, 28);
+      prod_b                   <= resize(magnitude(k) * fb.significand, 28);
+      -- 2: rounded to 24 significant bits.
+      r_neg_a <= fa.negative xor f_neg_k;
+      r_neg_b <= fb.negative xor f_neg_k;
+      round_a <= rounded_product(prod_a);
+      round_b <= rounded_product(prod_b);
+      -- 3: onto the grid.
+      g_neg_a <= r_neg_a;
+      g_neg_b <= r_neg_b;
+      on_grid(round_a, fa, mag_a, sticky_a);
+      on_grid(round_b, fb, mag_b, sticky_b);
+      -- 4: the three entries; the tables take them on the next clock.
+      wr_addr <= fill_bank & f_index(3);
+      wr_pa   <= entry(g_neg_a, mag_a, sticky_a);
+      wr_pb   <= entry(g_neg_b, mag_b, sticky_b);
+      wr_nb   <= entry(not g_neg_b, mag_b, sticky_b);
+
+      if fill_next = '1' then
+        if fill_k = ENTRIES - 1 then
+          fill_next <= '0';
+        else
+          fill_k <= fill_k + 1;
+        end if;
+      end if;
+      if f_valid(FILL_STAGES) = '1' and f_last(FILL_STAGES) = '1' then
+        filling   <= '0';
+        fill_bank <= not fill_bank;
+      end if;
+      if in_valid = '1' and in_ready = '1' then
+        filling   <= '1';
+        fill_next <= '1';
+        fill_k    <= 0;
+        fa        <= factor(in_cos);
+        fb        <= factor(in_sin);
+      end if;
+
+      if rst = '1' then
+        filling   <= '0';
+        fill_next <= '0';
+        fill_bank <= '0';
+        f_valid   <= (others => '0');
+      end if;
+    end if;
+
+  end process fill;
+
+  -- pragma translate_off
+  domain : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if in_valid = '1' and in_ready = '1' then
+        assert in_domain(in_cos) and in_domain(in_sin)
+          report "fastnms_orb_rotate: cos and sin must be 0 or 2**-27 .. 1 in magnitude"
+          severity error;
+      end if;
+    end if;
+
+  end process domain;
+
+  -- pragma translate_on
+
+  advance <= out_ready or not valid_pipe(READ_LATENCY);
+  issue   <= advance and read_full;
+
+  read_control : process (clk) is
+
+    variable first : std_logic;
+    variable last  : std_logic;
+
+  begin
+
+    if rising_edge(clk) then
+      first := '1' when step = 0 else '0';
+      last  := '1' when step = STEPS - 1 else '0';
+      if advance = '1' then
+        valid_pipe <= issue & valid_pipe(1 to READ_LATENCY - 1);
+        first_pipe <= first & first_pipe(1 to READ_LATENCY - 1);
+        last_pipe  <= last & last_pipe(1 to READ_LATENCY - 1);
+      end if;
+      if issue = '1' then
+        if step = STEPS - 1 then
+          step      <= 0;
+          read_bank <= not read_bank;
+          if read_bank = '1' then
+            full_1 <= '0';
+          else
+            full_0 <= '0';
+          end if;
+        else
+          step <= step + 1;
+        end if;
+      end if;
+      -- A bank fills only while it is not full: no conflict with the clear above.
+      if f_valid(FILL_STAGES) = '1' and f_last(FILL_STAGES) = '1' then
+        if fill_bank = '1' then
+          full_1 <= '1';
+        else
+          full_0 <= '1';
+        end if;
+      end if;
+
+      if rst = '1' then
+        valid_pipe <= (others => '0');
+        full_0     <= '0';
+        full_1     <= '0';
+        read_bank  <= '0';
+        step       <= 0;
+      end if;
+    end if;
+
+  end process read_control;
+
+  out_valid <= valid_pipe(READ_LATENCY);
+  out_first <= first_pipe(READ_LATENCY);
+  out_last  <= last_pipe(READ_LATENCY);
+
+  lane : for l in 0 to LANES - 1 generate
+    constant X_ROM : index_rom_t := coordinate_rom(l, 0);
+    constant Y_ROM : index_rom_t := coordinate_rom(l, 1);
+
+    signal addr_x : unsigned(5 downto 0);
+    signal addr_y : unsigned(5 downto 0);
+    signal pa_x   : std_logic_vector(32 downto 0);
+    signal nb_y   : std_logic_vector(32 downto 0);
+    signal pb_x   : std_logic_vector(32 downto 0);
+    signal pa_y   : std_logic_vector(32 downto 0);
+    signal dx     : signed(5 downto 0);
+    signal dy     : signed(5 downto 0);
+  begin
+
+    addr_x <= read_bank & X_ROM(step);
+    addr_y <= read_bank & Y_ROM(step);
+
+    -- x = PA[px] + NB[py]; y = PB[px] + PA[py].
+    table_pa_x : entity work.fastnms_ram_sdp
+      generic map (
+        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
+      )
+      port map (
+        clk     => clk,
+        wr_en   => f_valid(FILL_STAGES),
+        wr_addr => wr_addr,
+        wr_data => wr_pa,
+        rd_en   => advance,
+        rd_addr => addr_x,
+        rd_data => pa_x
+      );
+
+    table_nb_y : entity work.fastnms_ram_sdp
+      generic map (
+        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
+      )
+      port map (
+        clk     => clk,
+        wr_en   => f_valid(FILL_STAGES),
+        wr_addr => wr_addr,
+        wr_data => wr_nb,
+        rd_en   => advance,
+        rd_addr => addr_y,
+        rd_data => nb_y
+      );
+
+    table_pb_x : entity work.fastnms_ram_sdp
+      generic map (
+        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
+      )
+      port map (
+        clk     => clk,
+        wr_en   => f_valid(FILL_STAGES),
+        wr_addr => wr_addr,
+        wr_data => wr_pb,
+        rd_en   => advance,
+        rd_addr => addr_x,
+        rd_data => pb_x
+      );
+
+    table_pa_y : entity work.fastnms_ram_sdp
+      generic map (
+        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
+      )
+      port map (
+        clk     => clk,
+        wr_en   => f_valid(FILL_STAGES),
+        wr_addr => wr_addr,
+        wr_data => wr_pa,
+        rd_en   => advance,
+        rd_addr => addr_y,
+        rd_data => pa_y
+      );
+
+    round_x : entity work.fastnms_orb_round_point
+      port map (
+        clk       => clk,
+        en        => advance,
+        in_a      => pa_x,
+        in_b      => nb_y,
+        out_point => dx
+      );
+
+    round_y : entity work.fastnms_orb_round_point
+      port map (
+        clk       => clk,
+        en        => advance,
+        in_a      => pb_x,
+        in_b      => pa_y,
+        out_point => dy
+      );
+
+    out_dx(6 * l + 5 downto 6 * l) <= std_logic_vector(dx);
+    out_dy(6 * l + 5 downto 6 * l) <= std_logic_vector(dy);
+  end generate lane;
+
+end architecture rtl;
