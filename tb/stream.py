@@ -30,6 +30,24 @@ def value(signal: SimHandleBase) -> int:
     return v.to_unsigned() if hasattr(v, "to_unsigned") else int(v)
 
 
+def offer_times(clk, valid: SimHandleBase) -> list[int]:
+    """Start recording the times (ns) at which `valid` rises, that is when each item of
+    a stream that holds its item until taken is first offered; returns the list."""
+    times: list[int] = []
+
+    async def watch() -> None:
+        before = 0
+        while True:
+            await RisingEdge(clk)
+            now = value(valid)
+            if now and not before:
+                times.append(sim_ns())
+            before = now
+
+    cocotb.start_soon(watch())
+    return times
+
+
 class StreamSource:
     """Sends beats (dicts of field -> int) on <prefix>_valid/<prefix>_ready,
     with valid low for a random number of cycles before a beat with

@@ -52,8 +52,11 @@ DEEPER = {
     # The rotation's table fill: the rounding of |k| times a significand and the
     # entry's 32-bit add are one carry chain each (docs/orb_rtl.md, *Limits*); a
     # point's coordinate (fastnms_orb_round_point) takes 5 in its last stage.
-    "fastnms_orb_rotate": 13,
+    "fastnms_orb_rotate": 12,
     "fastnms_orb_round_point": 5,
+    # The column moment T (16 bits) and the column sum (13) are adds of more than
+    # 12 bits, one clock each.
+    "fastnms_orb_moments": 5,
 }
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 

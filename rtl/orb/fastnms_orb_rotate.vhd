@@ -91,6 +91,7 @@ architecture rtl of fastnms_orb_rotate is
     significand : unsigned(23 downto 0);
     left        : natural range 0 to 3;  -- shift onto the grid: left ...
     right       : natural range 0 to 31; -- ... or right, with a sticky bit
+    dropped     : unsigned(28 downto 0); -- the bits a right shift drops
   end record factor_t;
 
   function factor (f : std_logic_vector(31 downto 0)) return factor_t is
@@ -111,6 +112,12 @@ architecture rtl of fastnms_orb_rotate is
     else
       r.right := minimum(150 - FRACTION - e, 31);
     end if;
+
+    for i in r.dropped'range loop
+
+      r.dropped(i) := '1' when i < r.right else '0';
+
+    end loop;
 
     return r;
 
@@ -246,7 +253,7 @@ architecture rtl of fastnms_orb_rotate is
     variable dropped : unsigned(28 downto 0);
   begin
 
-    dropped := r and (shift_left(to_unsigned(1, 29), f.right) - 1);
+    dropped := r and f.dropped;
 
     if f.zero = '1' then
       mag    <= (others => '0');
@@ -409,82 +416,45 @@ begin
     constant X_ROM : index_rom_t := coordinate_rom(l, 0);
     constant Y_ROM : index_rom_t := coordinate_rom(l, 1);
 
-    signal addr_x : unsigned(5 downto 0);
-    signal addr_y : unsigned(5 downto 0);
-    signal pa_x   : std_logic_vector(32 downto 0);
-    signal nb_y   : std_logic_vector(32 downto 0);
-    signal pb_x   : std_logic_vector(32 downto 0);
-    signal pa_y   : std_logic_vector(32 downto 0);
-    signal dx     : signed(5 downto 0);
-    signal dy     : signed(5 downto 0);
+    type addrs_t is array (0 to 3) of unsigned(5 downto 0);
+
+    type entries_t is array (0 to 3) of entry_t;
+
+    -- Read ports: x = PA[px] + NB[py] (ports 0, 1); y = PB[px] + PA[py] (2, 3).
+    signal addr : addrs_t;
+    signal data : entries_t;
+    signal got  : entries_t;
+    signal dx   : signed(5 downto 0);
+    signal dy   : signed(5 downto 0);
   begin
 
-    addr_x <= read_bank & X_ROM(step);
-    addr_y <= read_bank & Y_ROM(step);
+    addr <= (read_bank & X_ROM(step), read_bank & Y_ROM(step), read_bank & X_ROM(step), read_bank & Y_ROM(step));
+    data <= (wr_pa, wr_nb, wr_pb, wr_pa);
 
-    -- x = PA[px] + NB[py]; y = PB[px] + PA[py].
-    table_pa_x : entity work.fastnms_ram_sdp
-      generic map (
-        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
-      )
-      port map (
-        clk     => clk,
-        wr_en   => f_valid(FILL_STAGES),
-        wr_addr => wr_addr,
-        wr_data => wr_pa,
-        rd_en   => advance,
-        rd_addr => addr_x,
-        rd_data => pa_x
-      );
+    table : for t in 0 to 3 generate
 
-    table_nb_y : entity work.fastnms_ram_sdp
-      generic map (
-        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
-      )
-      port map (
-        clk     => clk,
-        wr_en   => f_valid(FILL_STAGES),
-        wr_addr => wr_addr,
-        wr_data => wr_nb,
-        rd_en   => advance,
-        rd_addr => addr_y,
-        rd_data => nb_y
-      );
+      port_t : entity work.fastnms_ram_sdp
+        generic map (
+          DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
+        )
+        port map (
+          clk     => clk,
+          wr_en   => f_valid(FILL_STAGES),
+          wr_addr => wr_addr,
+          wr_data => data(t),
+          rd_en   => advance,
+          rd_addr => addr(t),
+          rd_data => got(t)
+        );
 
-    table_pb_x : entity work.fastnms_ram_sdp
-      generic map (
-        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
-      )
-      port map (
-        clk     => clk,
-        wr_en   => f_valid(FILL_STAGES),
-        wr_addr => wr_addr,
-        wr_data => wr_pb,
-        rd_en   => advance,
-        rd_addr => addr_x,
-        rd_data => pb_x
-      );
-
-    table_pa_y : entity work.fastnms_ram_sdp
-      generic map (
-        DEPTH => 64, WIDTH => 33, READ_LATENCY => 1, STYLE => "distributed"
-      )
-      port map (
-        clk     => clk,
-        wr_en   => f_valid(FILL_STAGES),
-        wr_addr => wr_addr,
-        wr_data => wr_pa,
-        rd_en   => advance,
-        rd_addr => addr_y,
-        rd_data => pa_y
-      );
+    end generate table;
 
     round_x : entity work.fastnms_orb_round_point
       port map (
         clk       => clk,
         en        => advance,
-        in_a      => pa_x,
-        in_b      => nb_y,
+        in_a      => got(0),
+        in_b      => got(1),
         out_point => dx
       );
 
@@ -492,8 +462,8 @@ begin
       port map (
         clk       => clk,
         en        => advance,
-        in_a      => pb_x,
-        in_b      => pa_y,
+        in_a      => got(2),
+        in_b      => got(3),
         out_point => dy
       );
 

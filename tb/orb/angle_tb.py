@@ -16,7 +16,7 @@ from cocotb.triggers import ClockCycles, RisingEdge
 from fastnms.golden import float32
 from fastnms.golden.orb import MOMENT_MAX
 
-from tb.stream import StreamSink, StreamSource, sim_ns, value
+from tb.stream import StreamSink, StreamSource, offer_times
 
 COUNT = int(os.environ["TB_COUNT"])
 # docs/orb_rtl.md: the most clocks from moments taken to angle offered: 5 fixed
@@ -68,18 +68,7 @@ async def equals_the_model(dut):
     await ClockCycles(dut.clk, 2)
     dut.rst.value = 0
     cocotb.start_soon(sink.run())
-    offered: list[int] = []  # when each angle first showed on out_valid
-
-    async def watch() -> None:
-        before = 0
-        while True:
-            await RisingEdge(dut.clk)
-            now = value(dut.out_valid)
-            if now and not before:
-                offered.append(sim_ns())
-            before = now
-
-    cocotb.start_soon(watch())
+    offered = offer_times(dut.clk, dut.out_valid)  # when each angle was first offered
     await source.send({"m01": a, "m10": b} for a, b in pairs)
     while len(sink.beats) < COUNT:
         await RisingEdge(dut.clk)

@@ -20,7 +20,11 @@ def test_pattern_package_is_the_golden_pattern():
 
 @pytest.mark.parametrize(
     ("lanes", "count"),
-    [(8, 200), (16, 100), pytest.param(1, 30, marks=pytest.mark.slow)],
+    [
+        (8, 200),
+        pytest.param(16, 100, marks=pytest.mark.slow),
+        pytest.param(1, 30, marks=pytest.mark.slow),
+    ],
     ids=["lanes8", "lanes16", "lanes1"],
 )
 def test_orb_rotate(request, lanes, count):

@@ -1,4 +1,4 @@
-"""pytest entry: the ORB units under GHDL (float32 multiplier and adder, angle, blur)
+"""pytest entry: the ORB units under GHDL (float32 multiplier and adder, angle, blur, moments)
 against the golden model."""
 
 import pytest
@@ -36,5 +36,15 @@ def test_orb_blur(request):
         "blur_tb",
         {},
         env={"TB_COUNT": "20000"},
+        name=request.node.nodeid,
+    )
+
+
+def test_orb_moments(request):
+    run_cocotb(
+        "fastnms_orb_moments",
+        "moments_tb",
+        {},
+        env={"TB_COUNT": "400"},
         name=request.node.nodeid,
     )
