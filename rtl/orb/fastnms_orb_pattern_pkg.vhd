@@ -6,6 +6,11 @@
 -- 2p + 1: points 2i and 2i + 1 are the two ends of bit i. Every coordinate lies
 -- in -13 .. 12. tb/orb/test_orb_rotate.py checks this table against
 -- golden/orb_pattern.py, which cv2.ORB's descriptors prove.
+--
+-- The order in which the RTL rotates and samples the points, and the square each
+-- lane reaches, are those of golden/sample_order.py (its docstring argues the
+-- reach): orb_point_at(step, lane, LANES) is the point in a lane at a step,
+-- orb_lane_reach(lane, LANES) the largest |x| or |y| its rotated points take.
 library ieee;
   use ieee.std_logic_1164.all;
 
@@ -149,4 +154,103 @@ package fastnms_orb_pattern_pkg is
     7,   0,  12,  -2,  -1,  -6,   0, -11
   );
 
+  constant ORB_PAIRS : positive := ORB_POINTS / 2;
+
+  -- A point's reach: the smallest R with (2R + 1)**2 > 4 (px**2 + py**2).
+  function orb_point_reach (p : natural) return natural;
+
+  -- The pattern point in lane `lane` at step `step` (0 .. 512 / lanes - 1):
+  -- lanes = 1, the pattern's order; otherwise lanes 2j and 2j + 1 carry the two
+  -- ends of pair ORB_PAIRS_BY_REACH(j * 512 / lanes + step).
+  function orb_point_at (step : natural; lane : natural; lanes : positive) return natural;
+
+  -- The largest reach among the points of lane `lane`.
+  function orb_lane_reach (lane : natural; lanes : positive) return natural;
+
+  type orb_pair_order_t is array (0 to ORB_PAIRS - 1) of natural range 0 to ORB_PAIRS - 1;
+
+  -- The pairs sorted by reach (the larger of their two points'), ties in pattern order.
+  constant ORB_PAIRS_BY_REACH : orb_pair_order_t;
+
 end package fastnms_orb_pattern_pkg;
+
+package body fastnms_orb_pattern_pkg is
+
+  function orb_point_reach (p : natural) return natural is
+    variable rho2 : natural;
+    variable r    : natural := 0;
+  begin
+
+    rho2 := ORB_PATTERN(2 * p) ** 2 + ORB_PATTERN(2 * p + 1) ** 2;
+
+    while (2 * r + 1) ** 2 <= 4 * rho2 loop
+
+      r := r + 1;
+
+    end loop;
+
+    return r;
+
+  end function orb_point_reach;
+
+  function orb_pair_reach (i : natural) return natural is
+  begin
+
+    return maximum(orb_point_reach(2 * i), orb_point_reach(2 * i + 1));
+
+  end function orb_pair_reach;
+
+  function sort_pairs_by_reach return orb_pair_order_t is
+    variable order : orb_pair_order_t;
+    variable n     : natural := 0;
+  begin
+
+    -- A counting sort over the reaches (0 .. 18): stable.
+    for r in 0 to 18 loop
+
+      for i in 0 to ORB_PAIRS - 1 loop
+
+        if orb_pair_reach(i) = r then
+          order(n) := i;
+          n        := n + 1;
+        end if;
+
+      end loop;
+
+    end loop;
+
+    assert n = ORB_PAIRS
+      report "fastnms_orb_pattern_pkg: a pair reaches beyond 18"
+      severity failure;
+    return order;
+
+  end function sort_pairs_by_reach;
+
+  constant ORB_PAIRS_BY_REACH : orb_pair_order_t := sort_pairs_by_reach;
+
+  function orb_point_at (step : natural; lane : natural; lanes : positive) return natural is
+  begin
+
+    if lanes = 1 then
+      return step;
+    end if;
+
+    return 2 * ORB_PAIRS_BY_REACH((lane / 2) * (ORB_POINTS / lanes) + step) + lane mod 2;
+
+  end function orb_point_at;
+
+  function orb_lane_reach (lane : natural; lanes : positive) return natural is
+    variable r : natural := 0;
+  begin
+
+    for s in 0 to ORB_POINTS / lanes - 1 loop
+
+      r := maximum(r, orb_point_reach(orb_point_at(s, lane, lanes)));
+
+    end loop;
+
+    return r;
+
+  end function orb_lane_reach;
+
+end package body fastnms_orb_pattern_pkg;

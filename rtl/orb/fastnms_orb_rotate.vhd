@@ -16,9 +16,11 @@
 -- high. Each read port is a fastnms_ram_sdp of 64 x 33 bits in distributed RAM,
 -- four per lane.
 --
--- Output: point p = step * LANES + l in lane l (bits 6 l + 5 .. 6 l of out_dx,
--- out_dy, two's complement, |d| <= 18); out_first and out_last mark a
--- keypoint's first and last step. Points 2i and 2i + 1 are the ends of bit i.
+-- Output: point orb_point_at(step, l, LANES) in lane l (bits 6 l + 5 .. 6 l of
+-- out_dx, out_dy, two's complement, |d| <= 18): the order of
+-- golden/sample_order.py, where lanes 2j and 2j + 1 carry the two ends of one
+-- bit, the pairs sorted by reach (fastnms_orb_sample's copies). out_first and
+-- out_last mark a keypoint's first and last step.
 -- Domain: |cos|, |sin| <= 1, each 0 or at least 2**-27 in magnitude (the values
 -- fastnms_orb_cos_sin gives); simulation reports anything else.
 library ieee;
@@ -76,7 +78,7 @@ architecture rtl of fastnms_orb_rotate is
 
     for s in rom'range loop
 
-      rom(s) := to_unsigned(ORB_PATTERN(2 * (s * LANES + l) + c) - ORB_COORD_MIN, 5);
+      rom(s) := to_unsigned(ORB_PATTERN(2 * orb_point_at(s, l, LANES) + c) - ORB_COORD_MIN, 5);
 
     end loop;
 

@@ -1,10 +1,10 @@
-"""cocotb testbench of fastnms_orb_rotate: every rotated pattern point of every keypoint
-equal to golden/float32.py's rotate (cvRound of ORB's float32 rotation) on the cos/sin of
-whole and special degrees, random degrees, the angles of random moments, the angles where
-the float rounding of a point changes its cvRound, and cos/sin pairs off the circle that
-land a point beside a half-integer; keypoints offered on random clocks, the output stalled
-at random. Then back-to-back keypoints with the output always ready: one step per clock,
-no gap, 512 / LANES clocks per keypoint."""
+"""cocotb testbench of fastnms_orb_rotate: every rotated pattern point of every keypoint, in
+the lanes and steps of golden/sample_order.py, equal to golden/float32.py's rotate (cvRound
+of ORB's float32 rotation) on the cos/sin of whole and special degrees, random degrees, the
+angles of random moments, the angles where the float rounding of a point changes its
+cvRound, and cos/sin pairs off the circle that land a point beside a half-integer; keypoints
+offered on random clocks, the output stalled at random. Then back-to-back keypoints with the
+output always ready: one step per clock, no gap, 512 / LANES clocks per keypoint."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ import cocotb
 import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge
-from fastnms.golden import float32
+from fastnms.golden import float32, sample_order
 from fastnms.golden.orb import MOMENT_MAX, PATTERN
 from fastnms.testing.orb_angles import cos_sin_of_degrees, near_half_integer_angles
 
@@ -66,6 +66,7 @@ def check(beats: list[dict[str, int]], a: np.ndarray, b: np.ndarray, lanes: int)
     steps = len(PATTERN) // lanes
     assert len(beats) == len(a) * steps, f"{len(beats)} steps for {len(a)} keypoints"
     gx, gy = float32.rotate(PATTERN[None, :, 0], PATTERN[None, :, 1], a[:, None], b[:, None])
+    order = sample_order.point_order(lanes).ravel()  # step by step, lane 0 first
     for k in range(len(a)):
         got = beats[k * steps : (k + 1) * steps]
         for s, beat in enumerate(got):
@@ -74,10 +75,10 @@ def check(beats: list[dict[str, int]], a: np.ndarray, b: np.ndarray, lanes: int)
             )
         dx = [v for beat in got for v in lanes_of(beat["dx"], lanes)]
         dy = [v for beat in got for v in lanes_of(beat["dy"], lanes)]
-        for p in range(len(PATTERN)):
-            assert (dx[p], dy[p]) == (gx[k, p], gy[k, p]), (
+        for i, p in enumerate(order):
+            assert (dx[i], dy[i]) == (gx[k, p], gy[k, p]), (
                 f"keypoint {k} (cos {a[k]:08x}, sin {b[k]:08x}) point {p} {tuple(PATTERN[p])}:"
-                f" ({dx[p]}, {dy[p]}), float32.rotate ({gx[k, p]}, {gy[k, p]})"
+                f" ({dx[i]}, {dy[i]}), float32.rotate ({gx[k, p]}, {gy[k, p]})"
             )
 
 

@@ -1,5 +1,5 @@
-"""pytest entry: the ORB units under GHDL (float32 multiplier and adder, angle, blur, moments)
-against the golden model."""
+"""pytest entry: the ORB units under GHDL (float32 multiplier and adder, angle, blur, moments,
+sampling) against the golden model."""
 
 import pytest
 
@@ -46,5 +46,24 @@ def test_orb_moments(request):
         "moments_tb",
         {},
         env={"TB_COUNT": "400"},
+        name=request.node.nodeid,
+    )
+
+
+@pytest.mark.parametrize(
+    ("lanes", "count"),
+    [
+        (8, 150),
+        pytest.param(16, 60, marks=pytest.mark.slow),
+        pytest.param(2, 20, marks=pytest.mark.slow),
+    ],
+    ids=["lanes8", "lanes16", "lanes2"],
+)
+def test_orb_sample(request, lanes, count):
+    run_cocotb(
+        "fastnms_orb_sample",
+        "sample_tb",
+        {"LANES": lanes},
+        env={"TB_COUNT": str(count)},
         name=request.node.nodeid,
     )
