@@ -57,7 +57,11 @@ DEEPER = {
     # The column moment T (16 bits) and the column sum (13) are adds of more than
     # 12 bits, one clock each.
     "fastnms_orb_moments": 5,
+    # The ORB engine: its angle units' depth.
+    "fastnms_orb_describe": 13,
 }
+# Entities made of the ones above, several minutes in yosys: under make test-full.
+SLOW_SYNTH = ("fastnms_orb_describe",)
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
 
@@ -75,7 +79,14 @@ def _top_without_vivado_attributes():
 
 
 # fastnms_axi at its default generics is test_axi_top_1920 below.
-@pytest.mark.parametrize("entity", [e for e in entities() if e != "fastnms_axi"])
+@pytest.mark.parametrize(
+    "entity",
+    [
+        pytest.param(e, marks=pytest.mark.slow) if e in SLOW_SYNTH else e
+        for e in entities()
+        if e != "fastnms_axi"
+    ],
+)
 def test_entity_synthesizes_without_latches(entity):
     netlist, messages = ghdl_synth(entity)
     assert "latch" not in messages.lower(), messages

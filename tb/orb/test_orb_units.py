@@ -67,3 +67,18 @@ def test_orb_sample(request, lanes, count):
         env={"TB_COUNT": str(count)},
         name=request.node.nodeid,
     )
+
+
+@pytest.mark.parametrize(
+    ("lanes", "count"),
+    [(8, 60), pytest.param(4, 30, marks=pytest.mark.slow)],
+    ids=["lanes8", "lanes4"],
+)
+def test_orb_describe(request, lanes, count):
+    run_cocotb(
+        "fastnms_orb_describe",
+        "describe_tb",
+        {"LANES": lanes},
+        env={"TB_COUNT": str(count)},
+        name=request.node.nodeid,
+    )
