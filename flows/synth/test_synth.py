@@ -37,11 +37,10 @@ DEEPER = {
     # deeper beside the output stage: abc chains the FIFO's level flags.
     "fastnms_nms_serializer": MAX_LOGIC_LEVELS + 1,
     "fastnms_nms_region": 7,
-    # Its read, compare, insert and write-back of a cell's sorted list, one record
-    # per clock with the two records before it forwarded, maps into 6 to 7 levels
-    # (docs/fastnms_cell_budget.md, *Limits*): not yet at 4.
-    "fastnms_cell_budget": 7,
-    "fastnms_budget_insert": 6,
+    # Its insertion maps into 3 levels (fastnms_budget_insert); its decode of a beat
+    # (in_y against the last record's line above the cell, the beat's flags, the input
+    # buffer's multiplexer) into 5 (docs/fastnms_cell_budget.md, *Limits*): not yet at 4.
+    "fastnms_cell_budget": 5,
     # The float32 units' carry chains are not split yet: the rounding increment into
     # the exponent (mul, add) and the 31-bit magnitude compare and 27-bit add (add)
     # are 6 to 8 CARRY4 long, and the angle unit adds its division step and
@@ -59,6 +58,10 @@ DEEPER = {
     "fastnms_orb_moments": 5,
     # The ORB engine: its angle units' depth.
     "fastnms_orb_describe": 13,
+    # The ORB row buffers: a request's top row split by ROMs (which of the
+    # memories read the next slot: a 37-bit thermometer of a 7-bit row), which
+    # abc maps into a compare chain (docs/orb_rtl.md, *The rows*).
+    "fastnms_orb_rows": 5,
 }
 # Entities made of the ones above, several minutes in yosys: under make test-full.
 SLOW_SYNTH = ("fastnms_orb_describe",)

@@ -82,3 +82,13 @@ def test_orb_describe(request, lanes, count):
         env={"TB_COUNT": str(count)},
         name=request.node.nodeid,
     )
+
+
+@pytest.mark.parametrize(("height", "slots"), [(37, 2), (31, 3)], ids=["blurred", "plain"])
+def test_orb_rows(request, height, slots):
+    run_cocotb(
+        "fastnms_orb_rows",
+        "rows_tb",
+        {"MAX_WIDTH": 48, "HEIGHT": height, "SLOTS": slots},
+        name=request.node.nodeid,
+    )
