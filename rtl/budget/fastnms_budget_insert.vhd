@@ -5,9 +5,16 @@
 -- The parent reads the record's cell (in_cell) in its bank (in_bank) at the
 -- clock the record comes in (in_valid); the banks' words come back two clocks
 -- later (rd_data_0/1, READ_LATENCY 2). Stage A holds the record during the
--- read, stage B compares it with every entry of the word, stage C inserts it
--- and writes the word back (wr_*). The words of the three records before it
--- are forwarded, so records of the same cell follow each other every clock.
+-- read. Stage B chooses the base word: the word read, or the word written by
+-- the third or fourth record before (the read did not see it). Stage C
+-- compares the record with every entry of the base word and with the two
+-- records before it, when they are in the same cell (they are not in the
+-- base word yet). Stage D turns the comparisons into the record's place (the
+-- entries of the base that beat it, moved down by the records before it that
+-- beat it, at most in_keep), inserts it into the cell's word (the base, or
+-- the word of the one or two records before) and writes the word back
+-- (wr_*, 4 clocks after the record). So records of the same cell follow each
+-- other every clock, and no comparison waits for a choice made in its clock.
 -- in_open marks the first record of a cell row in its bank: last_cell_0/1
 -- restart there and then follow the highest cell written (the drain's end).
 library ieee;
@@ -58,7 +65,7 @@ architecture rtl of fastnms_budget_insert is
 
   subtype flags_t is std_logic_vector(0 to K_MAX - 1);
 
-  -- Stage C's word: the record e inserted where the entries stop beating it, the
+  -- Stage D's word: the record e inserted where the entries stop beating it, the
   -- entries after it moved down, entries from index k on (mask) invalid.
   function inserted (w : word_t; e : entry_t; b : flags_t; mask : flags_t) return word_t is
     variable result : word_t;
@@ -87,7 +94,7 @@ architecture rtl of fastnms_budget_insert is
   end function inserted;
 
   -- Stage A: the record while its word is read (two clocks: the memories' output
-  -- registers cut the block RAM's clock-to-output from the comparisons).
+  -- registers cut the block RAM's clock-to-output from the logic).
   signal a_valid : std_logic;
   signal a_open  : std_logic;
   signal a_bank  : bank_t;
@@ -95,34 +102,48 @@ architecture rtl of fastnms_budget_insert is
   signal a_entry : entry_t;
   signal a_mask  : flags_t;
 
-  -- Stage B: the word read (or forwarded), compared.
+  -- Stage B: the record, the base word chosen.
   signal b_valid  : std_logic;
   signal b_open   : std_logic;
   signal b_bank   : bank_t;
   signal b_cell   : addr_t;
   signal b_entry  : entry_t;
   signal b_mask   : flags_t;
-  signal b_from_c : std_logic; -- the record in stage C has the same cell
   signal b_from_w : std_logic; -- the record written last clock has the same cell
   signal b_from_v : std_logic; -- the record written two clocks ago has the same cell
-  signal b_read   : word_t;
-  signal b_word   : word_t;
-  signal b_beats  : flags_t;
+  signal b_base   : word_t;
+  signal b_near_1 : std_logic; -- the record one ahead (now in stage C) has the same cell
+  signal b_near_2 : std_logic; -- the record two ahead (now in stage D) has the same cell
 
-  -- Stage C: the record inserted, the word written.
-  signal c_valid : std_logic;
-  signal c_bank  : bank_t;
-  signal c_cell  : addr_t;
-  signal c_entry : entry_t;
-  signal c_mask  : flags_t;
-  signal c_word  : word_t;
-  signal c_beats : flags_t;
-  signal c_new   : word_t;
-  signal w_valid : std_logic; -- stage C wrote last clock: its cell and word
-  signal w_bank  : bank_t;
-  signal w_cell  : addr_t;
-  signal w_word  : word_t;
-  signal v_word  : word_t;    -- the word stage C wrote two clocks ago
+  -- Stage C: the record, its base word, compared.
+  signal c_valid  : std_logic;
+  signal c_bank   : bank_t;
+  signal c_cell   : addr_t;
+  signal c_entry  : entry_t;
+  signal c_mask   : flags_t;
+  signal c_base   : word_t;
+  signal c_same_1 : std_logic; -- the record before (now in stage D) has the same cell
+  signal c_same_2 : std_logic; -- the record two before (written last clock) has the same cell
+
+  -- Stage D: the comparisons, the record inserted, the word written.
+  signal d_valid  : std_logic;
+  signal d_bank   : bank_t;
+  signal d_cell   : addr_t;
+  signal d_entry  : entry_t;
+  signal d_mask   : flags_t;
+  signal d_word   : word_t;    -- the cell's word unless the record before has the same cell
+  signal d_same_1 : std_logic; -- the record before has the same cell: its word is w_word
+  signal d_base   : flags_t;   -- the entries of the base word that beat the record
+  signal d_beat_1 : std_logic; -- the record before: same cell, and it beats the record
+  signal d_beat_2 : std_logic; -- the same for the record two before
+  signal d_beats  : flags_t;
+  signal d_new    : word_t;
+  signal w_valid  : std_logic; -- stage D wrote last clock: its record and word
+  signal w_bank   : bank_t;
+  signal w_cell   : addr_t;
+  signal w_entry  : entry_t;
+  signal w_word   : word_t;
+  signal v_word   : word_t;    -- the word stage D wrote two clocks ago
 
   signal last_0 : addr_t;
   signal last_1 : addr_t;
@@ -134,6 +155,9 @@ begin
     severity failure;
 
   stages : process (clk) is
+
+    variable s : unsigned(SCORE_BITS - 1 downto 0);
+
   begin
 
     if rising_edge(clk) then
@@ -150,30 +174,58 @@ begin
 
       end loop;
 
-      -- B: the record, and where its word comes from (the three records before it
-      -- write their words at or after this one's read).
+      -- B: the record, and whether the read missed the word of the record in stage D
+      -- or of the one written last clock (the read saw the words written before).
       b_valid  <= a_valid;
       b_open   <= a_open;
       b_bank   <= a_bank;
       b_cell   <= a_cell;
       b_entry  <= a_entry;
       b_mask   <= a_mask;
-      b_from_c <= b_valid and to_sl(b_bank = a_bank and b_cell = a_cell);
-      b_from_w <= c_valid and to_sl(c_bank = a_bank and c_cell = a_cell);
+      b_from_w <= d_valid and to_sl(d_bank = a_bank and d_cell = a_cell);
       b_from_v <= w_valid and to_sl(w_bank = a_bank and w_cell = a_cell);
+      b_near_1 <= b_valid and to_sl(b_bank = a_bank and b_cell = a_cell);
+      b_near_2 <= c_valid and to_sl(c_bank = a_bank and c_cell = a_cell);
 
-      -- C: the word and the comparisons.
-      c_valid <= b_valid;
-      c_bank  <= b_bank;
-      c_cell  <= b_cell;
-      c_entry <= b_entry;
-      c_mask  <= b_mask;
-      c_word  <= b_word;
-      c_beats <= b_beats;
-      w_valid <= c_valid;
-      w_bank  <= c_bank;
-      w_cell  <= c_cell;
-      w_word  <= c_new;
+      -- C: the base word (the newest of the two forwarded words and the read), and
+      -- which of the two records after the base's are in the same cell.
+      c_valid  <= b_valid;
+      c_bank   <= b_bank;
+      c_cell   <= b_cell;
+      c_entry  <= b_entry;
+      c_mask   <= b_mask;
+      c_base   <= b_base;
+      c_same_1 <= b_near_1;
+      c_same_2 <= b_near_2;
+
+      -- D: the comparisons, the word to insert into without the record before's.
+      s := score_of(c_entry);
+
+      for j in 0 to K_MAX - 1 loop
+
+        d_base(j) <= beats(entry(c_base, j, E_BITS), s);
+
+      end loop;
+
+      d_beat_1 <= c_same_1 and beats(d_entry, s);
+      d_beat_2 <= c_same_2 and beats(w_entry, s);
+      d_same_1 <= c_same_1;
+      if c_same_2 = '1' then
+        d_word <= w_word;
+      else
+        d_word <= c_base;
+      end if;
+      d_valid <= c_valid;
+      d_bank  <= c_bank;
+      d_cell  <= c_cell;
+      d_entry <= c_entry;
+      d_mask  <= c_mask;
+
+      w_valid <= d_valid;
+      w_bank  <= d_bank;
+      w_cell  <= d_cell;
+      w_entry <= d_entry;
+      w_word  <= d_new;
       v_word  <= w_word;
 
       -- The last cell written of each bank (one register each: GHDL 2.0's synthesis
@@ -189,60 +241,61 @@ begin
         a_valid <= '0';
         b_valid <= '0';
         c_valid <= '0';
+        d_valid <= '0';
         w_valid <= '0';
       end if;
     end if;
 
   end process stages;
 
-  b_read <= rd_data_0 when b_bank = 0 else
+  b_base <= w_word when b_from_w = '1' else
+            v_word when b_from_v = '1' else
+            rd_data_0 when b_bank = 0 else
             rd_data_1;
 
-  b_word <= c_new when b_from_c = '1' else
-            w_word when b_from_w = '1' else
-            v_word when b_from_v = '1' else
-            b_read;
+  -- The record's place: the cell's word is the base word plus the records before it
+  -- in the same cell (one or two), kept to the best in_keep. Its entries that beat
+  -- the record are the base's that do (a prefix: the word is sorted) and those
+  -- records that do, at most in_keep: flag j is set when j is below that count.
+  place : process (all) is
 
-  -- The comparisons of stage B against the word stage C is making are made on that
-  -- word's sources (C's registers), then chosen as C chooses its entries.
-  compare : process (all) is
-
-    variable s : unsigned(SCORE_BITS - 1 downto 0);
+    variable t1 : std_logic;
+    variable t2 : std_logic;
 
   begin
 
-    s := score_of(b_entry);
-
     for j in 0 to K_MAX - 1 loop
 
-      if b_from_c = '1' then
-        if c_beats(j) = '1' then
-          b_beats(j) <= c_mask(j) and beats(entry(c_word, j, E_BITS), s);
-        elsif j = 0 then
-          b_beats(j) <= c_mask(j) and beats(c_entry, s);
-        elsif c_beats(j - 1) = '1' then
-          b_beats(j) <= c_mask(j) and beats(c_entry, s);
-        else
-          b_beats(j) <= c_mask(j) and beats(entry(c_word, j - 1, E_BITS), s);
-        end if;
-      elsif b_from_w = '1' then
-        b_beats(j) <= beats(entry(w_word, j, E_BITS), s);
-      elsif b_from_v = '1' then
-        b_beats(j) <= beats(entry(v_word, j, E_BITS), s);
+      t1 := '1';
+      t2 := '1';
+
+      if j >= 1 then
+        t1 := d_base(j - 1);
+      end if;
+
+      if j >= 2 then
+        t2 := d_base(j - 2);
+      end if;
+
+      if d_beat_1 = '1' and d_beat_2 = '1' then
+        d_beats(j) <= d_mask(j) and t2;
+      elsif (d_beat_1 or d_beat_2) = '1' then
+        d_beats(j) <= d_mask(j) and t1;
       else
-        b_beats(j) <= beats(entry(b_read, j, E_BITS), s);
+        d_beats(j) <= d_mask(j) and d_base(j);
       end if;
 
     end loop;
 
-  end process compare;
+  end process place;
 
-  c_new <= inserted(c_word, c_entry, c_beats, c_mask);
+  d_new <= inserted(w_word, d_entry, d_beats, d_mask) when d_same_1 = '1' else
+           inserted(d_word, d_entry, d_beats, d_mask);
 
-  wr_valid    <= c_valid;
-  wr_bank     <= c_bank;
-  wr_cell     <= c_cell;
-  wr_word     <= c_new;
+  wr_valid    <= d_valid;
+  wr_bank     <= d_bank;
+  wr_cell     <= d_cell;
+  wr_word     <= d_new;
   last_cell_0 <= last_0;
   last_cell_1 <= last_1;
 

@@ -22,14 +22,14 @@
 -- How (docs/fastnms_cell_budget.md): the best K of each cell of the cell row
 -- being filled are kept sorted in one memory word per cell (K entries of a
 -- valid bit, score and position in the cell, fastnms_budget_pkg), updated at
--- one record per clock by fastnms_budget_insert (read, compare, insert, write
--- back). Two banks: a complete cell row drains from one
+-- one record per clock by fastnms_budget_insert (read, choose the base word,
+-- compare, insert, write back). Two banks: a complete cell row drains from one
 -- (which also empties its words) while the next fills the other. Jobs (drain a
 -- bank, emit an end of frame) queue in order, four at most.
 --
 -- The input waits (a) while the memory is cleared after reset
 -- (ceil(MAX_WIDTH / 16) clocks); (b) when a record opens a cell row while the
--- other bank still drains (a drain takes 5 + 4 clocks per cell up to the last cell
+-- other bank still drains (a drain takes 6 + 4 clocks per cell up to the last cell
 -- written plus one per record; without row-end beats it starts at the first
 -- record of the next cell row: the output held back, sparse rows without
 -- row-end beats, or frames back to back), or the job queue is full; (c) with
@@ -136,8 +136,20 @@ begin
     constant ENTRY_BITS : positive := entry_width(SCORE_BITS); -- fastnms_budget_pkg
     constant WORD_BITS  : positive := K_MAX * ENTRY_BITS;     -- entries best first
     constant JOB_SLOTS  : positive := 4;
-    -- The input beat after decoding, as the input buffer holds it.
-    constant D_BITS : positive := BEAT_BITS + 3 + 4 + 4 + Y_BITS + ADDR_BITS + 16;
+
+    -- The input beat after decoding, as the input buffer holds it: the beat, its
+    -- frame's CELL (log) and K, and its kind as flags (F_*), so that the decision
+    -- reads registers only.
+    constant F_PASS   : natural  := 0; -- K = 0
+    constant F_OUT    : natural  := 1; -- K = 0 and not a row-end beat: the beat leaves
+    constant F_MARKER : natural  := 2; -- a row-end beat
+    constant F_INSERT : natural  := 3; -- a record to insert (K > 0)
+    constant F_SWITCH : natural  := 4; -- a record of a later cell row than the last record
+    constant F_FIRST  : natural  := 5; -- a record that opens a cell row (no row open, or F_SWITCH)
+    constant F_PUSH   : natural  := 6; -- queues a job (K > 0): F_SWITCH, an end of frame or F_CLOSE
+    constant F_ENDS   : natural  := 7; -- F_PUSH for an end of frame or F_CLOSE: the row closes
+    constant F_BITS   : positive := 8;
+    constant D_BITS   : positive := BEAT_BITS + 3 + 4 + F_BITS;
 
     subtype word_t is std_logic_vector(WORD_BITS - 1 downto 0);
 
@@ -184,6 +196,7 @@ begin
     signal i_close   : std_logic; -- the beat is a row-end beat that closes the open cell row
     signal i_log     : log_t;
     signal i_k       : natural range 0 to K_MAX;
+    signal i_pass    : std_logic;             -- i_k = 0
     signal i_in_cell : unsigned(15 downto 0); -- cell_mask(i_log), registered with it
     signal i_last_y  : unsigned(Y_BITS - 1 downto 0);
     signal i_data    : std_logic_vector(D_BITS - 1 downto 0);
@@ -193,17 +206,13 @@ begin
     signal s_ready  : std_logic;
     signal s_data   : std_logic_vector(D_BITS - 1 downto 0);
     signal s_beat   : beat_t;
+    signal s_flags  : std_logic_vector(F_BITS - 1 downto 0);
     signal s_eof    : std_logic;
     signal s_x      : unsigned(X_BITS - 1 downto 0);
     signal s_y      : unsigned(Y_BITS - 1 downto 0);
     signal s_score  : unsigned(SCORE_BITS - 1 downto 0);
     signal s_log    : log_t;
     signal s_k      : natural range 0 to K_MAX;
-    signal s_pass   : std_logic;       -- K = 0: the beat passes
-    signal s_switch : std_logic;       -- a record of a later cell row than the last record
-    signal s_open   : std_logic;       -- a record with no cell row open (the frame's first, or after a close)
-    signal s_marker : std_logic;       -- a row-end beat
-    signal s_close  : std_logic;       -- a row-end beat that closes the open cell row
     signal s_y0     : unsigned(Y_BITS - 1 downto 0); -- the first line of the record's cell row
     signal s_cell   : addr_t;
     signal s_offset : std_logic_vector(15 downto 0); -- y and x inside the cell
@@ -215,24 +224,27 @@ begin
     signal insert_now : std_logic;
 
     -- Banks.
-    signal row_open  : std_logic;                -- a record of this frame went in
-    signal fill_bank : bank_t;
-    signal busy      : std_logic_vector(0 to 1); -- a drain of the bank is queued or running
-    signal bank_y0   : y_pair_t;
-    signal bank_log  : log_pair_t;
+    signal row_open   : std_logic;                -- a record of this frame went in
+    signal fill_bank  : bank_t;
+    signal busy_fill  : std_logic; -- a drain of fill_bank is queued or running (or the clear)
+    signal busy_other : std_logic; -- the same for the other bank
+    signal bank_free  : std_logic; -- the record's bank (target) is not busy
+    signal turn       : std_logic; -- fill_bank changes
+    signal bank_y0    : y_pair_t;
+    signal bank_log   : log_pair_t;
 
     -- Jobs.
     signal jobs      : jobs_t;
-    signal job_head  : natural range 0 to JOB_SLOTS - 1;
-    signal job_tail  : natural range 0 to JOB_SLOTS - 1;
-    signal job_count : natural range 0 to JOB_SLOTS;
+    signal job_head  : unsigned(1 downto 0);
+    signal job_tail  : unsigned(1 downto 0);
+    signal job_level : std_logic_vector(0 to JOB_SLOTS - 1); -- bit i: more than i jobs queued
+    signal job_room  : std_logic;                            -- registered: fewer than JOB_SLOTS jobs
     signal job_push  : std_logic;
     signal job_new   : job_t;
     signal job_pop   : std_logic;
     signal jobs_idle : std_logic; -- registered: no job queued or running, none pushed
 
     -- The insertion pipeline's record, its write and the banks' last cells written.
-    signal s_first : std_logic; -- the record opens a cell row
     signal s_entry : entry_t;
     signal c_valid : std_logic;
     signal c_bank  : bank_t;
@@ -247,20 +259,33 @@ begin
     signal wr_en   : std_logic_vector(0 to 1);
     signal wr_addr : addr_pair_t;
     signal wr_data : word_pair_t;
+    signal empty   : std_logic_vector(0 to 1); -- registered: the bank's write empties the word
 
     -- Reset clear.
-    signal clearing : std_logic;
-    signal clear_at : addr_t;
+    signal clearing  : std_logic;
+    signal clear_at  : addr_t;
+    signal clear_end : std_logic; -- registered: clear_at is the last cell
 
     -- Drain.
-    type drain_state_t is (st_idle, st_settle, st_read, st_wait, st_load, st_emit, st_eof);
-
-    signal d_state : drain_state_t;
-    signal d_job   : job_t;
-    signal d_cell  : addr_t;
-    signal d_x0    : unsigned(X_BITS - 1 downto 0); -- the first column of the cell
-    signal d_word  : word_t;
-    signal d_last  : std_logic;                     -- d_cell is the bank's last cell
+    -- Its states, one flip-flop each (one of them set).
+    signal d_idle     : std_logic;
+    signal d_settle   : std_logic;
+    signal d_settle_2 : std_logic;
+    signal d_read     : std_logic;
+    signal d_wait     : std_logic;
+    signal d_load     : std_logic;
+    signal d_emit     : std_logic;
+    signal d_eof      : std_logic;
+    signal d_drains   : std_logic_vector(0 to 1); -- the job drains bank 0, 1
+    signal d_next     : addr_t;                   -- registered: d_cell + 1
+    signal d_hi       : addr_t;                   -- the bank's last cell written
+    signal d_job      : job_t;
+    signal d_cell     : addr_t;
+    signal d_log      : log_t;                         -- the bank's CELL
+    signal d_y0       : unsigned(Y_BITS - 1 downto 0); -- the bank's cell row
+    signal d_x0       : unsigned(X_BITS - 1 downto 0); -- the first column of the cell
+    signal d_word     : word_t;
+    signal d_last     : std_logic;                     -- registered: d_cell is the bank's last cell
 
   begin
 
@@ -272,42 +297,51 @@ begin
 
       variable log      : log_t;
       variable k        : natural range 0 to K_MAX;
-      variable mask     : unsigned(15 downto 0);
+      variable k_zero   : std_logic;
       variable y_wide   : unsigned(15 downto 0);
-      variable x_wide   : unsigned(15 downto 0);
       variable a_record : std_logic;
-      variable later    : std_logic;
+      variable differs  : std_logic; -- y is in another cell row than the last record
+      variable at_last  : std_logic; -- y is the last line of its cell row
       variable closed   : std_logic;
+      variable flags    : std_logic_vector(F_BITS - 1 downto 0);
 
     begin
 
       if i_started = '1' then
-        log := i_log;
-        k   := i_k;
+        log    := i_log;
+        k      := i_k;
+        k_zero := i_pass;
       else
-        log := minimum(4, to_integer(in_cell_log));
-        k   := minimum(K_MAX, to_integer(in_per_cell));
+        log    := minimum(4, to_integer(in_cell_log));
+        k      := minimum(K_MAX, to_integer(in_per_cell));
+        k_zero := to_sl(in_per_cell = 0);
       end if;
 
-      mask     := cell_mask(log);
       y_wide   := resize(in_y, 16);
-      x_wide   := resize(in_x, 16);
       a_record := not in_eof and not in_row_end;
-      -- A later cell row than the last record's: a differing bit of y above the cell's
-      -- (raster order: never before).
-      -- (A cell row is open only after the frame's first beat: the registered mask holds.)
-      later := i_open and to_sl(((y_wide xor resize(i_last_y, 16)) and not i_in_cell) /= 0);
+      -- With a cell row open, a later cell row than the last record's: a differing bit
+      -- of y above the cell's (raster order: never before). (A cell row is open only
+      -- after the frame's first beat: the registered mask holds.)
+      differs := to_sl(((y_wide xor resize(i_last_y, 16)) and not i_in_cell) /= 0);
+      at_last := to_sl((y_wide(7 downto 0) or not i_in_cell(7 downto 0)) = x"FF");
       -- A row-end beat closes the open cell row at its last line (or past it).
-      closed  := i_open and in_row_end and
-                 (later or to_sl((y_wide(7 downto 0) or not i_in_cell(7 downto 0)) = x"FF"));
+      closed  := i_open and in_row_end and (differs or at_last);
       i_close <= closed;
-      i_data  <= pack(in_eof, in_x, in_y, in_score)
-                 & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
-                 & (later and a_record) & (not i_open and a_record) & in_row_end & closed
-                 & std_logic_vector(resize(y_wide and not mask, Y_BITS))
-                 & std_logic_vector(resize(shift_right(x_wide, log + 4), ADDR_BITS))
-                 & std_logic_vector(y_wide(7 downto 0) and mask(7 downto 0))
-                 & std_logic_vector(x_wide(7 downto 0) and mask(7 downto 0));
+
+      -- Each flag a sum of few terms of differs and at_last (a beat is a record, a
+      -- row-end beat or an end of frame).
+      flags(F_PASS)   := k_zero;
+      flags(F_OUT)    := k_zero and not in_row_end;
+      flags(F_MARKER) := in_row_end;
+      flags(F_INSERT) := a_record and not k_zero;
+      flags(F_SWITCH) := a_record and i_open and differs;
+      flags(F_FIRST)  := a_record and (differs or not i_open);
+      flags(F_PUSH)   := not k_zero and (in_eof or (i_open and (differs or (in_row_end and at_last))));
+      flags(F_ENDS)   := not k_zero and (in_eof or (i_open and in_row_end and (differs or at_last)));
+
+      i_data <= pack(in_eof, in_x, in_y, in_score)
+                & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
+                & flags;
 
     end process decode;
 
@@ -328,6 +362,7 @@ begin
             i_log     <= minimum(4, to_integer(in_cell_log));
             i_in_cell <= cell_mask(minimum(4, to_integer(in_cell_log)));
             i_k       <= minimum(K_MAX, to_integer(in_per_cell));
+            i_pass    <= to_sl(in_per_cell = 0);
           end if;
         end if;
         if rst = '1' then
@@ -355,125 +390,176 @@ begin
 
     in_ready <= i_ready;
 
-    s_beat   <= s_data(D_BITS - 1 downto D_BITS - BEAT_BITS);
-    s_eof    <= s_beat(BEAT_BITS - 1);
-    s_x      <= unsigned(s_beat(BEAT_BITS - 2 downto Y_BITS + SCORE_BITS));
-    s_y      <= unsigned(s_beat(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
-    s_score  <= unsigned(s_beat(SCORE_BITS - 1 downto 0));
-    s_log    <= to_integer(unsigned(s_data(D_BITS - BEAT_BITS - 1 downto D_BITS - BEAT_BITS - 3)));
-    s_k      <= to_integer(unsigned(s_data(D_BITS - BEAT_BITS - 4 downto D_BITS - BEAT_BITS - 7)));
-    s_switch <= s_data(D_BITS - BEAT_BITS - 8);
-    s_open   <= s_data(D_BITS - BEAT_BITS - 9);
-    s_marker <= s_data(D_BITS - BEAT_BITS - 10);
-    s_close  <= s_data(D_BITS - BEAT_BITS - 11);
-    s_y0     <= unsigned(s_data(Y_BITS + ADDR_BITS + 15 downto ADDR_BITS + 16));
-    s_cell   <= unsigned(s_data(ADDR_BITS + 15 downto 16));
-    s_offset <= s_data(15 downto 0);
-    s_pass   <= to_sl(s_k = 0);
+    s_beat  <= s_data(D_BITS - 1 downto D_BITS - BEAT_BITS);
+    s_eof   <= s_beat(BEAT_BITS - 1);
+    s_x     <= unsigned(s_beat(BEAT_BITS - 2 downto Y_BITS + SCORE_BITS));
+    s_y     <= unsigned(s_beat(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
+    s_score <= unsigned(s_beat(SCORE_BITS - 1 downto 0));
+    s_log   <= to_integer(unsigned(s_data(F_BITS + 6 downto F_BITS + 4)));
+    s_k     <= to_integer(unsigned(s_data(F_BITS + 3 downto F_BITS)));
+    s_flags <= s_data(F_BITS - 1 downto 0);
+
+    -- The record's cell row, cell and place in the cell, from the registered beat.
+    locate : process (all) is
+
+      variable mask   : unsigned(15 downto 0);
+      variable y_wide : unsigned(15 downto 0);
+      variable x_wide : unsigned(15 downto 0);
+
+    begin
+
+      mask     := cell_mask(s_log);
+      y_wide   := resize(s_y, 16);
+      x_wide   := resize(s_x, 16);
+      s_y0     <= resize(y_wide and not mask, Y_BITS);
+      s_cell   <= resize(shift_right(x_wide, s_log + 4), ADDR_BITS);
+      s_offset <= std_logic_vector(y_wide(7 downto 0) and mask(7 downto 0))
+                  & std_logic_vector(x_wide(7 downto 0) and mask(7 downto 0));
+
+    end process locate;
 
     -- ---- decision ---------------------------------------------------------------------------
 
-    target <= 1 - fill_bank when s_switch = '1' else
+    target <= 1 - fill_bank when s_flags(F_SWITCH) = '1' else
               fill_bank;
 
     -- A row-end beat goes, closing its row needs a place in the queue; K = 0 passes
     -- the beat once no job is left; a record needs its bank free (and, opening a cell
-    -- row, a place in the queue); an end of frame a place in the queue.
+    -- row, a place in the queue); an end of frame a place in the queue. While the
+    -- memory clears, both banks count as busy and the queue as full.
+    -- (Factored: a term of the beat's kind and the queue, a term of its bank, each of
+    -- few registers, so that take is two levels of logic.)
     decide : process (all) is
+
+      variable kind : std_logic; -- the queue and the output allow the beat
+      variable bank : std_logic; -- its bank allows it (a record needs its bank free)
+
     begin
 
-      pass <= '0';
-      take <= '0';
-
-      if s_valid = '1' and clearing = '0' then
-        if s_marker = '1' then
-          take <= not s_close or s_pass or to_sl(job_count < JOB_SLOTS);
-        elsif s_pass = '1' then
-          pass <= jobs_idle;
-          take <= jobs_idle and o_ready;
-        elsif s_eof = '1' then
-          take <= to_sl(job_count < JOB_SLOTS);
-        else
-          take <= not busy(target) and to_sl(s_switch = '0' or job_count < JOB_SLOTS);
-        end if;
+      if s_flags(F_OUT) = '1' then
+        kind := jobs_idle and o_ready;
+      else
+        kind := not s_flags(F_PUSH) or job_room;
       end if;
+
+      if s_flags(F_SWITCH) = '1' then
+        bank := not (s_flags(F_INSERT) and busy_other);
+      else
+        bank := not (s_flags(F_INSERT) and busy_fill);
+      end if;
+
+      -- (Without s_valid: the input buffer's output is ready or not, valid or not.)
+      take <= kind and (s_flags(F_OUT) or bank);
+      pass <= s_valid and s_flags(F_OUT) and jobs_idle;
 
     end process decide;
 
-    s_ready    <= take;
-    insert_now <= take and not s_pass and not s_eof and not s_marker;
+    s_ready <= take;
+
+    bank_free <= not busy_other when s_flags(F_SWITCH) = '1' else
+                 not busy_fill;
+
+    -- take and F_INSERT, take and F_PUSH, written out: a beat with either flag does not
+    -- pass, and a record queues a job exactly when it opens a row in the other bank.
+    insert_now <= s_valid and s_flags(F_INSERT) and not busy_fill when s_flags(F_SWITCH) = '0' else
+                  s_valid and s_flags(F_INSERT) and not busy_other and job_room;
+    job_push   <= s_valid and s_flags(F_PUSH) and job_room and not (s_flags(F_INSERT) and busy_other);
 
     -- The job a beat queues: a later cell row, or a row-end beat that closes the row,
     -- drains the bank filled so far; an end of frame drains the open row's bank, if a
     -- record opened one, then emits itself.
-    job_new.drain <= s_switch when s_eof = '0' and s_marker = '0' else
-                     row_open;
+    job_new.drain <= s_flags(F_SWITCH) or row_open;
     job_new.bank  <= fill_bank;
     job_new.eof   <= s_eof;
     job_new.x     <= s_x;
     job_new.y     <= s_y;
-    job_push      <= take and not s_pass and (s_switch or s_eof or s_close);
+
+    -- A job that drains a bank is queued with the bank being filled, and the next
+    -- record then fills the other bank: the fill bank changes exactly then. (The fill
+    -- bank is free while a record of its row is in: busy_fill is clear when it turns.)
+    turn <= job_push and job_new.drain;
 
     control : process (clk) is
+
+      variable clear_fill  : std_logic; -- the drain of the fill bank ends
+      variable clear_other : std_logic; -- the drain of the other bank ends
+      variable still       : std_logic; -- the clear goes on next clock
+      variable level       : std_logic_vector(0 to JOB_SLOTS - 1);
+
     begin
 
       if rising_edge(clk) then
-        if insert_now = '1' and (s_open or s_switch) = '1' then
-          fill_bank <= target;
-        end if;
         -- A record about to open a cell row: its bank is free, so its row may be set
         -- before the record is taken (and is set again when it is).
-        if s_valid = '1' and s_pass = '0' and s_eof = '0' and s_marker = '0' and (s_open or s_switch) = '1'
-           and busy(target) = '0' then
+        if s_valid = '1' and s_flags(F_INSERT) = '1' and s_flags(F_FIRST) = '1' and bank_free = '1' then
           bank_y0(target)  <= s_y0;
           bank_log(target) <= s_log;
         end if;
-        jobs_idle <= to_sl(job_count = 0 and d_state = st_idle) and not job_push;
         if insert_now = '1' then
           row_open <= '1';
         end if;
-        if take = '1' and (s_eof or s_close) = '1' then
+        -- (With K = 0 no row is open.)
+        if job_push = '1' and s_flags(F_ENDS) = '1' then
           row_open <= '0';
-          if s_pass = '0' and row_open = '1' then
-            fill_bank <= 1 - fill_bank;
-          end if;
+        end if;
+        if turn = '1' then
+          fill_bank <= 1 - fill_bank;
         end if;
 
         if job_push = '1' then
-          jobs(job_tail) <= job_new;
-          job_tail       <= (job_tail + 1) mod JOB_SLOTS;
-          if job_new.drain = '1' then
-            busy(job_new.bank) <= '1';
-          end if;
+          jobs(to_integer(job_tail)) <= job_new;
+          job_tail                   <= (job_tail(1) xor job_tail(0)) & not job_tail(0);
         end if;
         if job_pop = '1' then
-          job_head <= (job_head + 1) mod JOB_SLOTS;
-          if d_job.drain = '1' then
-            busy(d_job.bank) <= '0';
-          end if;
+          job_head <= (job_head(1) xor job_head(0)) & not job_head(0);
         end if;
+
+        -- The busy flags, relative to the fill bank.
+        clear_fill  := job_pop and d_drains(fill_bank);
+        clear_other := job_pop and d_drains(1 - fill_bank);
+        if turn = '1' then
+          busy_fill  <= busy_other and not clear_other;
+          busy_other <= '1';
+        else
+          busy_fill  <= busy_fill and not clear_fill;
+          busy_other <= busy_other and not clear_other;
+        end if;
+
+        -- The count of jobs as a thermometer code: no carry chain.
+        level := job_level;
         if job_push = '1' and job_pop = '0' then
-          job_count <= job_count + 1;
+          level := '1' & job_level(0 to JOB_SLOTS - 2);
         elsif job_push = '0' and job_pop = '1' then
-          job_count <= job_count - 1;
+          level := job_level(1 to JOB_SLOTS - 1) & '0';
+        end if;
+        job_level <= level;
+
+        -- While the memory clears: the queue full, no job idle (no beat passes).
+        still     := clearing and not clear_end;
+        job_room  <= not level(JOB_SLOTS - 1) and not still;
+        jobs_idle <= not job_level(0) and d_idle and not job_push and not still;
+        if clearing = '1' and clear_end = '1' then
+          busy_fill  <= '0';
+          busy_other <= '0';
         end if;
 
         if rst = '1' then
-          fill_bank <= 0;
-          row_open  <= '0';
-          jobs_idle <= '0';
-          busy      <= "00";
-          job_head  <= 0;
-          job_tail  <= 0;
-          job_count <= 0;
+          fill_bank  <= 0;
+          row_open   <= '0';
+          jobs_idle  <= '0';
+          busy_fill  <= '1';
+          busy_other <= '1';
+          job_head   <= "00";
+          job_tail   <= "00";
+          job_level  <= (others => '0');
+          job_room   <= '0';
         end if;
       end if;
 
     end process control;
 
-    -- ---- stages A to C: read, compare, insert, write back -------------------------------
+    -- ---- stages A to D: read, choose the base word, compare, insert and write back ------
 
-    s_first <= s_open or s_switch;
     s_entry <= '1' & std_logic_vector(s_score) & s_offset;
 
     insert : entity work.fastnms_budget_insert
@@ -486,7 +572,7 @@ begin
         clk         => clk,
         rst         => rst,
         in_valid    => insert_now,
-        in_open     => s_first,
+        in_open     => s_flags(F_FIRST),
         in_bank     => target,
         in_cell     => s_cell,
         in_entry    => s_entry,
@@ -508,82 +594,99 @@ begin
 
       if rising_edge(clk) then
         if clearing = '1' then
-          if clear_at = CELLS - 1 then
+          if clear_end = '1' then
             clearing <= '0';
           end if;
-          clear_at <= clear_at + 1;
+          clear_at  <= clear_at + 1;
+          clear_end <= to_sl(to_integer(clear_at) = CELLS - 2);
         end if;
         if rst = '1' then
-          clearing <= '1';
-          clear_at <= (others => '0');
+          clearing  <= '1';
+          clear_at  <= (others => '0');
+          clear_end <= to_sl(CELLS = 1);
         end if;
       end if;
 
     end process clear;
 
     -- ---- drain: the head job's bank cell by cell (read, wait for the output register,
-    -- load and empty, entries one per clock), then its end of frame. A drain starts a
-    -- clock after its job (settle): the bank's last record, three stages behind the
+    -- load and empty, entries one per clock), then its end of frame. A drain starts two
+    -- clocks after its job (settle): the bank's last record, four stages behind the
     -- beat that queued the job, has written its word by the first read --------------
 
-    d_last <= to_sl(d_cell = bank_hi(d_job.bank));
-
     drain : process (clk) is
+
+      variable head  : job_t;
+      variable spent : std_logic; -- d_emit: the cell has no entry left
+
     begin
 
       if rising_edge(clk) then
-        -- An if chain, not a case: GHDL's netlist of a case on an enumeration maps to latches.
-        if d_state = st_idle then
-          if job_count /= 0 then
-            d_job  <= jobs(job_head);
-            d_cell <= (others => '0');
-            d_x0   <= (others => '0');
-            if jobs(job_head).drain = '1' then
-              d_state <= st_settle;
-            else
-              d_state <= st_eof;
-            end if;
-          end if;
-        elsif d_state = st_settle then
-          d_state <= st_read;
-        elsif d_state = st_read then
-          d_state <= st_wait;
-        elsif d_state = st_wait then
-          d_state <= st_load;
-        elsif d_state = st_load then
-          d_word  <= rd_data(d_job.bank);
-          d_state <= st_emit;
-        elsif d_state = st_emit then
-          if valid_of(entry(d_word, 0, ENTRY_BITS)) = '0' then
-            if d_last = '1' then
-              if d_job.eof = '1' then
-                d_state <= st_eof;
-              else
-                d_state <= st_idle;
-              end if;
-            else
-              d_cell  <= d_cell + 1;
-              d_x0    <= d_x0 + shift_left(to_unsigned(16, X_BITS), bank_log(d_job.bank));
-              d_state <= st_read;
-            end if;
-          elsif o_ready = '1' then
+        -- Registered a clock ahead: d_cell changes three clocks before d_emit.
+        d_last <= to_sl(d_cell = d_hi);
+        d_next <= d_cell + 1;
+        d_x0   <= shift_left(resize(d_cell, X_BITS), d_log + 4);
+
+        head  := jobs(to_integer(job_head));
+        spent := not valid_of(entry(d_word, 0, ENTRY_BITS));
+
+        if d_idle = '1' and job_level(0) = '1' then
+          d_job  <= head;
+          d_cell <= (others => '0');
+
+          for b in 0 to 1 loop
+
+            d_drains(b) <= head.drain and to_sl(head.bank = b);
+
+          end loop;
+
+        end if;
+        if d_settle = '1' then
+          d_log <= bank_log(d_job.bank);
+          d_y0  <= bank_y0(d_job.bank);
+          d_hi  <= bank_hi(d_job.bank);
+        end if;
+        if d_load = '1' then
+          d_word <= rd_data(d_job.bank);
+        end if;
+        if d_emit = '1' then
+          if spent = '1' and d_last = '0' then
+            d_cell <= d_next;
+          elsif spent = '0' and o_ready = '1' then
             d_word <= drop_first(d_word, ENTRY_BITS);
           end if;
-        elsif o_ready = '1' then -- st_eof
-          d_state <= st_idle;
         end if;
 
+        -- The states: idle, then for a drain settle, settle_2, and per cell read, wait,
+        -- load, emit (one entry per clock the output takes); an end of frame at the end.
+        d_idle     <= (d_idle and not job_level(0)) or (d_emit and spent and d_last and not d_job.eof)
+                      or (d_eof and o_ready);
+        d_settle   <= d_idle and job_level(0) and head.drain;
+        d_settle_2 <= d_settle;
+        d_read     <= d_settle_2 or (d_emit and spent and not d_last);
+        d_wait     <= d_read;
+        d_load     <= d_wait;
+        d_emit     <= d_load or (d_emit and not spent);
+        d_eof      <= (d_idle and job_level(0) and not head.drain)
+                      or (d_emit and spent and d_last and d_job.eof) or (d_eof and not o_ready);
+
         if rst = '1' then
-          d_state <= st_idle;
+          d_idle     <= '1';
+          d_settle   <= '0';
+          d_settle_2 <= '0';
+          d_read     <= '0';
+          d_wait     <= '0';
+          d_load     <= '0';
+          d_emit     <= '0';
+          d_eof      <= '0';
         end if;
       end if;
 
     end process drain;
 
     -- A job ends with its end-of-frame beat, or (without one) after its last cell.
-    job_pop <= (to_sl(d_state = st_eof) and o_ready)
-               or (to_sl(d_state = st_emit) and not valid_of(entry(d_word, 0, ENTRY_BITS))
-                   and d_last and not d_job.eof);
+    job_pop <= (d_eof and o_ready)
+               or (d_emit and not valid_of(entry(d_word, 0, ENTRY_BITS)) and d_last and not d_job.eof);
 
     outputs : process (all) is
 
@@ -596,18 +699,18 @@ begin
       if pass = '1' then
         o_valid <= '1';
         o_beat  <= s_beat;
-      elsif d_state = st_eof then
+      elsif d_eof = '1' then
         o_valid <= '1';
         o_beat  <= pack('1', d_job.x, d_job.y, to_unsigned(0, SCORE_BITS));
       else
-        o_valid <= to_sl(d_state = st_emit) and valid_of(e);
+        o_valid <= d_emit and valid_of(e);
         o_beat  <= pack('0', d_x0 or resize(unsigned(e(7 downto 0)), X_BITS),
-                        bank_y0(d_job.bank) or resize(unsigned(e(15 downto 8)), Y_BITS), score_of(e));
+                        d_y0 or resize(unsigned(e(15 downto 8)), Y_BITS), score_of(e));
       end if;
 
     end process outputs;
 
-    -- ---- memories: each bank is filled (stages A to C), drained, or cleared ------------
+    -- ---- memories: each bank is filled (stages A to D), drained, or cleared ------------
 
     ports : process (all) is
 
@@ -618,14 +721,14 @@ begin
       for b in 0 to 1 loop
 
         -- (While the drain settles, the bank's last record writes its word.)
-        owns := to_sl(d_state /= st_idle and d_state /= st_settle and d_job.drain = '1' and d_job.bank = b);
+        owns := not (d_idle or d_settle or d_settle_2) and d_drains(b);
 
         -- Reads run every clock (the read pipeline's enable): a read has no effect.
         rd_en(b) <= '1';
 
         if owns = '1' then
           rd_addr(b) <= d_cell;
-          wr_en(b)   <= to_sl(d_state = st_load);
+          wr_en(b)   <= d_load;
           wr_addr(b) <= d_cell;
         else
           rd_addr(b) <= s_cell;
@@ -635,7 +738,7 @@ begin
         end if;
 
         -- Draining and clearing write an empty word: only its valid bits matter.
-        if owns = '1' or clearing = '1' then
+        if empty(b) = '1' then
           wr_data(b) <= emptied(c_new, ENTRY_BITS);
         else
           wr_data(b) <= c_new;
@@ -644,6 +747,29 @@ begin
       end loop;
 
     end process ports;
+
+    -- Registered a clock ahead: the drain writes its bank in d_load (after d_wait),
+    -- the clear while clearing (never with a record in the pipeline).
+    empty_flags : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+
+        for b in 0 to 1 loop
+
+          empty(b) <= d_wait and d_drains(b);
+          if clearing = '1' and clear_end = '0' then
+            empty(b) <= '1';
+          end if;
+
+        end loop;
+
+        if rst = '1' then
+          empty <= "11";
+        end if;
+      end if;
+
+    end process empty_flags;
 
     memories : for b in 0 to 1 generate
 

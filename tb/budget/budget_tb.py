@@ -245,7 +245,7 @@ async def late_row_then_dense_row(dut):
     needs the first row's bank while that row still drains (started by the second row's
     record). Measured three ways (K 15, CELL 16):
     - back to back, without row-end beats: the wait is at most the drain, 4 clocks per
-      cell plus one per record, plus 3;
+      cell plus one per record, plus 4;
     - at the pixels' clocks (one pixel per clock, as from an NMS), without row-end beats:
       the drain has one line more, so the wait is that bound less a line (none when a
       line takes longer than the drain);
@@ -261,7 +261,7 @@ async def late_row_then_dense_row(dut):
     scores = tb.np_rng.integers(0, 2**SCORE_BITS, keep.sum())
     records = np.stack([xs[keep], ys[keep], scores], axis=1).astype(np.int64)
     frame = (records, MAX_WIDTH, 48, 0, 15)
-    bound = -(-MAX_WIDTH // 16) * (4 + 15) + 3
+    bound = -(-MAX_WIDTH // 16) * (4 + 15) + 4
     held = tb.held
     await tb.run_frames([frame], "late row", row_ends=False)
     dut._log.info("back to back: the input waited %d clocks (bound %d)", tb.held - held, bound)
@@ -280,7 +280,7 @@ async def late_row_then_dense_row(dut):
 async def row_end_starts_the_drain(dut):
     """A cell row's records leave after its last line's row-end beat, not at the next
     record or the end of frame: within the drain (4 clocks per cell up to the last cell
-    written, plus one per record) and 3 clocks of pipeline, for each CELL
+    written, plus one per record) and 4 clocks of pipeline, for each CELL
     whose rows end before the frame's last line. Row-end beats at lines that do not end
     a cell row change nothing."""
     if MAX_HEIGHT < 32:
@@ -302,7 +302,7 @@ async def row_end_starts_the_drain(dut):
         await tb.source.send(beats[: first_row_end + 1])
         taken = sim_ns()
         cells = -(-MAX_WIDTH // cell)
-        bound = cells * 4 + len(want) + 3
+        bound = cells * 4 + len(want) + 4
         await ClockCycles(dut.clk, bound + 1)
         got = [(b["x"], b["y"], b["score"]) for b in tb.sink.beats[start:]]
         assert got == want, record_mismatch(got, want, f"CELL {cell}, after its row end")
