@@ -17,6 +17,7 @@ from fastnms.golden import orb
 from fastnms.golden.image import load_grey
 from fastnms.testing import images as testimages
 
+from tb.orb.patches import random_crop
 from tb.stream import StreamSink, StreamSource, offer_times
 
 COUNT = int(os.environ["TB_COUNT"])
@@ -48,10 +49,7 @@ def patches(rng: random.Random, count: int) -> list[np.ndarray]:
         if rng.random() < 0.5:
             out.append(nrng.integers(0, 256, size=(SIDE, SIDE), dtype=np.uint8))
         else:
-            p = photos[rng.randrange(len(photos))]
-            y = rng.randrange(p.shape[0] - SIDE)
-            x = rng.randrange(p.shape[1] - SIDE)
-            out.append(np.ascontiguousarray(p[y : y + SIDE, x : x + SIDE]))
+            out.append(random_crop(rng, photos, SIDE))
     return out[:count]
 
 

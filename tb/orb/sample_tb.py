@@ -22,6 +22,7 @@ from fastnms.golden import orb, sample_order
 from fastnms.golden.image import load_grey
 from fastnms.testing import images as testimages
 
+from tb.orb.patches import random_crop
 from tb.stream import StreamSink, StreamSource, offer_times
 
 COUNT = int(os.environ["TB_COUNT"])
@@ -57,10 +58,7 @@ def patches(rng: random.Random, count: int) -> list[np.ndarray]:
             low = rng.choice([0, 100, 254])
             out.append(nrng.integers(low, low + 2, size=(SIDE, SIDE), dtype=np.uint8))
         else:
-            p = photos[rng.randrange(len(photos))]
-            y = rng.randrange(p.shape[0] - SIDE)
-            x = rng.randrange(p.shape[1] - SIDE)
-            out.append(np.ascontiguousarray(p[y : y + SIDE, x : x + SIDE]))
+            out.append(random_crop(rng, photos, SIDE))
     return out[:count]
 
 
