@@ -56,15 +56,16 @@ DEEPER = {
     # The column moment T (16 bits) and the column sum (13) are adds of more than
     # 12 bits, one clock each.
     "fastnms_orb_moments": 5,
-    # The ORB engine: its angle units' depth.
+    # The ORB engine, and ORB after the budget around it: the angle units' depth.
     "fastnms_orb_describe": 13,
+    "fastnms_orb_feed": 13,
     # The ORB row buffers: a request's top row split by ROMs (which of the
     # memories read the next slot: a 37-bit thermometer of a 7-bit row), which
     # abc maps into a compare chain (docs/orb_rtl.md, *The rows*).
     "fastnms_orb_rows": 5,
 }
 # Entities made of the ones above, several minutes in yosys: under make test-full.
-SLOW_SYNTH = ("fastnms_orb_describe",)
+SLOW_SYNTH = ("fastnms_orb_describe", "fastnms_orb_feed")
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
 

@@ -112,6 +112,10 @@ architecture rtl of fastnms_orb_describe is
 
 begin
 
+  assert LANES = 2 or LANES = 4 or LANES = 8 or LANES = 16
+    report "fastnms_orb_describe: LANES must be 2, 4, 8 or 16"
+    severity failure;
+
   -- A plain column goes to the moments unit, the last one's record to the record
   -- FIFO: taken when both have room.
   plain_ready <= moments_rdy and (record_rdy or not last);

@@ -231,8 +231,10 @@ package body fastnms_orb_pattern_pkg is
   function orb_point_at (step : natural; lane : natural; lanes : positive) return natural is
   begin
 
-    if lanes = 1 then
-      return step;
+    -- LANES 1, or a value the entities refuse (their assertions need the
+    -- elaboration to get that far): the pattern's order.
+    if lanes /= 2 and lanes /= 4 and lanes /= 8 and lanes /= 16 then
+      return step mod ORB_POINTS;
     end if;
 
     return 2 * ORB_PAIRS_BY_REACH((lane / 2) * (ORB_POINTS / lanes) + step) + lane mod 2;

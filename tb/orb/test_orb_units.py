@@ -92,3 +92,12 @@ def test_orb_rows(request, height, slots):
         {"MAX_WIDTH": 48, "HEIGHT": height, "SLOTS": slots},
         name=request.node.nodeid,
     )
+
+
+def test_orb_feed(request):
+    run_cocotb(
+        "fastnms_orb_feed",
+        "feed_tb",
+        {"MAX_WIDTH": 128, "MAX_HEIGHT": 96},
+        name=request.node.nodeid,
+    )

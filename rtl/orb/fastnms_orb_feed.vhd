@@ -1,0 +1,451 @@
+-- ORB after the budget: keypoint records in, each with its angle and
+-- descriptor out, equal to golden/orb.py (ic_angle, descriptors on the
+-- blurred image). It keeps the image's last rows (two fastnms_orb_rows: the
+-- unblurred rows, HEIGHT 31, and the blurred ones, HEIGHT 37), reads each
+-- keypoint's columns out of them once its rows are in, and hands them to
+-- fastnms_orb_describe:
+--
+--   plain pixels ──► rows (31 x SLOTS) ─► columns x - 15 .. x + 15 ─┐
+--   blurred pixels ► rows (37 x SLOTS) ─► columns x - 18 .. x + 18 ─┼► fastnms_orb_describe ─► out
+--   records ─┬─► plain queue ─► plain sequencer (requests) ──────────┘        ▲
+--            └─► blurred queue ─► blurred sequencer (requests) ───────────────┘
+--
+-- Records: keypoints 31 pixels or more inside the image (ORB's border), a cell
+-- row at a time as fastnms_cell_budget hands them over (cell_log: its CELL),
+-- any order within a cell row. A sequencer starts a keypoint's requests once
+-- its last row is in: the unblurred row y + 15 and the blurred row y + 18
+-- complete (the next row started). The two sequencers run apart, because the
+-- engine takes a keypoint's blurred columns only as its sampler frees a bank.
+--
+-- No row is overwritten unread: a stream's ready is low while its next row
+-- would overwrite a row from HALF above the first line of the cell row of the
+-- oldest keypoint its sequencer has not finished (a register), and at a
+-- frame's first pixel until every keypoint of the frame before is read. Both
+-- readies are functions of registers. The rows kept, 2 MAX_CELL + 2 HALF per
+-- image (2 slots of 31 and of 37 rows at MAX_CELL 16), keep that from ever
+-- deadlocking for a CELL up to MAX_CELL (simulation reports a larger one, and
+-- a keypoint whose rows were overwritten).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_orb_feed is
+  generic (
+    MAX_WIDTH  : positive := 1920;
+    MAX_HEIGHT : positive := 1080;
+    SCORE_BITS : positive := 8;
+    LANES      : positive := 8;
+    -- The largest CELL of the budget in front (16 .. 256, a power of two):
+    -- sizes the rows kept, 2 MAX_CELL + 2 HALF each side.
+    MAX_CELL : positive := 16
+  );
+  port (
+    clk : in    std_logic;
+    rst : in    std_logic;
+    -- The image, and the blurred image, each one pixel per beat in raster
+    -- order (first: a frame's first pixel).
+    plain_valid   : in    std_logic;
+    plain_ready   : out   std_logic;
+    plain_first   : in    std_logic;
+    plain_x       : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    plain_pixel   : in    std_logic_vector(7 downto 0);
+    blurred_valid : in    std_logic;
+    blurred_ready : out   std_logic;
+    blurred_first : in    std_logic;
+    blurred_x     : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    blurred_pixel : in    std_logic_vector(7 downto 0);
+    -- Keypoints in, and out with their angle (float32 bits, degrees) and
+    -- descriptor (bit i: byte i / 8, bit i mod 8).
+    key_valid : in    std_logic;
+    key_ready : out   std_logic;
+    key_x     : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    key_y     : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    key_score : in    unsigned(SCORE_BITS - 1 downto 0);
+    -- log2(CELL) - 4 of the budget the keypoints come from (0: CELL 16 .. 4: 256).
+    cell_log       : in    unsigned(2 downto 0);
+    out_valid      : out   std_logic;
+    out_ready      : in    std_logic;
+    out_x          : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y          : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score      : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_angle      : out   std_logic_vector(31 downto 0);
+    out_descriptor : out   std_logic_vector(255 downto 0)
+  );
+end entity fastnms_orb_feed;
+
+architecture rtl of fastnms_orb_feed is
+
+  constant X_BITS      : positive := clog2(MAX_WIDTH);
+  constant Y_BITS      : positive := bits_for(MAX_HEIGHT);
+  constant RECORD_BITS : positive := X_BITS + Y_BITS + SCORE_BITS;
+  constant QUEUE_DEPTH : positive := 16;
+
+  type side_t is record
+    half  : positive; -- rows above and below the keypoint
+    slots : positive;
+  end record side_t;
+
+  type sides_t is array (0 to 1) of side_t;
+
+  -- Rows kept: a cell row's keypoints are read within the next cell row, and
+  -- the first ones need HALF rows above it: 2 MAX_CELL + 2 HALF rows, in slots
+  -- of 2 HALF + 1 (docs/orb_rtl.md, *The pipeline*).
+  function slots_for (half : positive) return positive is
+  begin
+
+    return (2 * MAX_CELL + 2 * half + 2 * half) / (2 * half + 1);
+
+  end function slots_for;
+
+  -- 0: the unblurred image (the moments' 31 rows), 1: the blurred one (37).
+  constant SIDES : sides_t := ((half => 15, slots => slots_for(15)), (half => 18, slots => slots_for(18)));
+
+  type columns_t is array (0 to 1) of std_logic_vector(37 * 8 - 1 downto 0);
+
+  type records_t is array (0 to 1) of std_logic_vector(RECORD_BITS - 1 downto 0);
+
+  signal in_valid : std_logic_vector(0 to 1);
+  signal in_ready : std_logic_vector(0 to 1);
+  signal in_first : std_logic_vector(0 to 1);
+  signal in_x     : unsigned(2 * X_BITS - 1 downto 0);
+  signal in_pixel : std_logic_vector(15 downto 0);
+
+  signal key_record               : std_logic_vector(RECORD_BITS - 1 downto 0);
+  signal queue_ready, queue_valid : std_logic_vector(0 to 1);
+  signal queue_pop                : std_logic_vector(0 to 1);
+  signal queue_head               : records_t;
+
+  signal col_valid,   col_ready : std_logic_vector(0 to 1);
+  signal columns                : columns_t;
+
+  -- The plain columns' records, one per keypoint, taken with its last column.
+  signal tag_valid,   tag_push  : std_logic;
+  signal tag_head               : std_logic_vector(RECORD_BITS - 1 downto 0);
+  signal tag_pushed             : std_logic_vector(RECORD_BITS - 1 downto 0);
+  signal plain_count            : natural range 0 to 30;
+  signal plain_in,    plain_rdy : std_logic;
+  signal plain_take             : std_logic;
+
+  signal result : std_logic_vector(RECORD_BITS - 1 downto 0);
+
+begin
+
+  assert MAX_CELL = 16 or MAX_CELL = 32 or MAX_CELL = 64 or MAX_CELL = 128 or MAX_CELL = 256
+    report "fastnms_orb_feed: MAX_CELL must be 16, 32, 64, 128 or 256"
+    severity failure;
+
+  in_valid <= plain_valid & blurred_valid;
+  in_first <= plain_first & blurred_first;
+  in_x     <= plain_x & blurred_x;
+  in_pixel <= plain_pixel & blurred_pixel;
+
+  plain_ready   <= in_ready(0);
+  blurred_ready <= in_ready(1);
+
+  -- A record goes into both queues at once.
+  key_record <= std_logic_vector(key_x) & std_logic_vector(key_y) & std_logic_vector(key_score);
+  key_ready  <= queue_ready(0) and queue_ready(1);
+
+  side : for s in 0 to 1 generate
+    constant HALF   : positive := SIDES(s).half;
+    constant HEIGHT : positive := 2 * HALF + 1;
+    constant ROWS   : positive := HEIGHT * SIDES(s).slots;
+
+    signal x       : unsigned(X_BITS - 1 downto 0);
+    signal take_px : std_logic;
+    -- The row being written: absolute (the frame's rows so far) and physical
+    -- (numbered as fastnms_orb_rows numbers them: 0 at a frame's first row).
+    signal current  : natural range 0 to 2 ** Y_BITS - 1;
+    signal physical : natural range 0 to ROWS - 1;
+    signal room     : std_logic;
+    signal idle     : std_logic;
+    signal quiet    : natural range 0 to 7;
+    signal rd_valid : std_logic;
+    signal rd_ready : std_logic;
+    signal rd_x     : unsigned(X_BITS - 1 downto 0);
+    signal rd_top   : unsigned(clog2(ROWS) - 1 downto 0);
+    -- The sequencer: the keypoint being requested and its next column.
+    signal busy   : std_logic;
+    signal dx     : natural range 0 to HEIGHT - 1;
+    signal head_x : natural range 0 to 2 ** X_BITS - 1;
+    signal head_y : natural range 0 to 2 ** Y_BITS - 1;
+  begin
+
+    x <= in_x((1 - s) * X_BITS + X_BITS - 1 downto (1 - s) * X_BITS);
+
+    -- The stream waits while its next row could overwrite a row still to be
+    -- read, and at a frame's first pixel until the frame before is read.
+    in_ready(s) <= room and (idle or not in_first(s));
+    take_px     <= in_valid(s) and in_ready(s);
+
+    queue : entity work.fastnms_fifo
+      generic map (
+        DEPTH => QUEUE_DEPTH,
+        WIDTH => RECORD_BITS,
+        STYLE => "distributed"
+      )
+      port map (
+        clk       => clk,
+        rst       => rst,
+        in_valid  => key_valid and key_ready,
+        in_ready  => queue_ready(s),
+        in_room2  => open,
+        in_room3  => open,
+        in_spare  => open,
+        in_data   => key_record,
+        out_valid => queue_valid(s),
+        out_ready => queue_pop(s),
+        out_data  => queue_head(s),
+        busy      => open
+      );
+
+    row_buffer : entity work.fastnms_orb_rows
+      generic map (
+        MAX_WIDTH => MAX_WIDTH,
+        HEIGHT    => HEIGHT,
+        SLOTS     => SIDES(s).slots
+      )
+      port map (
+        clk        => clk,
+        rst        => rst,
+        wr_valid   => take_px,
+        wr_first   => in_first(s),
+        wr_x       => x,
+        wr_pixel   => in_pixel((1 - s) * 8 + 7 downto (1 - s) * 8),
+        row_index  => open,
+        rd_valid   => rd_valid,
+        rd_ready   => rd_ready,
+        rd_x       => rd_x,
+        rd_top     => rd_top,
+        out_valid  => col_valid(s),
+        out_ready  => col_ready(s),
+        out_column => columns(s)(8 * HEIGHT - 1 downto 0)
+      );
+
+    sequencer : process (clk) is
+
+      variable y        : natural range 0 to 2 ** Y_BITS - 1;
+      variable hx       : natural range 0 to 2 ** X_BITS - 1;
+      variable hy       : natural range 0 to 2 ** Y_BITS - 1;
+      variable d        : natural range 0 to HEIGHT - 1;
+      variable b, v     : std_logic;
+      variable row      : natural range 0 to 2 ** Y_BITS;
+      variable phys     : natural range 0 to ROWS - 1;
+      variable top      : integer;
+      variable back     : integer;
+      variable low      : natural range 0 to 2 ** Y_BITS - 1;
+      variable pending  : boolean;
+      variable low_bits : unsigned(Y_BITS - 1 downto 0);
+
+    begin
+
+      if rising_edge(clk) then
+        queue_pop(s) <= '0';
+
+        -- The rows written: a frame's first pixel is row 0.
+        row  := current;
+        phys := physical;
+        if take_px = '1' then
+          if in_first(s) = '1' then
+            row  := 0;
+            phys := 0;
+          elsif x = 0 then
+            row  := current + 1;
+            phys := (physical + 1) mod ROWS;
+          end if;
+        end if;
+        current  <= row mod 2 ** Y_BITS;
+        physical <= phys;
+
+        -- The request presented: the next column, or the first of the head
+        -- record once its last row is complete.
+        hx := head_x;
+        hy := head_y;
+        d  := dx;
+        b  := busy;
+        v  := rd_valid;
+        if rd_valid = '1' and rd_ready = '1' then
+          if dx = HEIGHT - 1 then
+            b := '0';
+            v := '0';
+          else
+            d := dx + 1;
+          end if;
+        end if;
+        y := to_integer(unsigned(queue_head(s)(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS)));
+        if b = '0' and queue_valid(s) = '1' and queue_pop(s) = '0' and current > y + HALF then
+          b            := '1';
+          v            := '1';
+          d            := 0;
+          hx           := to_integer(unsigned(queue_head(s)(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS)));
+          hy           := y;
+          queue_pop(s) <= '1';
+        end if;
+        busy     <= b;
+        rd_valid <= v;
+        dx       <= d;
+        head_x   <= hx;
+        head_y   <= hy;
+        -- (Wrapped like the hardware's adds when no keypoint is in.)
+        rd_x <= to_unsigned((hx + d + 2 ** X_BITS - HALF) mod 2 ** X_BITS, X_BITS);
+        -- The top row's physical number, from the current row's: back rows
+        -- above it (0 .. ROWS - 1 for a keypoint whose rows are kept).
+        back := row + HALF - hy;
+        if back < 0 or back >= ROWS then
+          back := 0;
+        end if;
+        top := phys - back;
+        if top < 0 then
+          top := top + ROWS;
+        end if;
+        rd_top <= to_unsigned(top, rd_top'length);
+
+        -- A new row may start while it overwrites no row a pending keypoint
+        -- needs. The keypoints come a cell row at a time, so none is above the
+        -- first line of the oldest one's cell row (its y rounded down to CELL).
+        pending := b = '1' or queue_valid(s) = '1' or (key_valid = '1' and key_ready = '1');
+        low     := to_integer(key_y);
+        if b = '1' then
+          low := hy;
+        elsif queue_valid(s) = '1' then
+          low := y;
+        end if;
+        low_bits := to_unsigned(low, Y_BITS);
+
+        for k in 0 to minimum(Y_BITS, 8) - 1 loop
+
+          if k < 4 or to_integer(cell_log) > k - 4 then
+            low_bits(k) := '0';
+          end if;
+
+        end loop;
+
+        low  := to_integer(low_bits);
+        room <= to_sl(not pending or row + 1 + HALF < low + ROWS);
+        -- Idle: nothing pending for a few clocks, the last requests read.
+        if pending then
+          quiet <= 0;
+        elsif quiet < 7 then
+          quiet <= quiet + 1;
+        end if;
+        idle <= to_sl(not pending and quiet >= 6);
+
+        if rst = '1' then
+          busy     <= '0';
+          rd_valid <= '0';
+          current  <= 0;
+          physical <= 0;
+          room     <= '1';
+          idle     <= '1';
+          quiet    <= 7;
+        end if;
+      end if;
+
+    end process sequencer;
+
+    -- pragma translate_off
+    kept : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if rst = '0' and queue_pop(s) = '1' then
+          assert current - (head_y - HALF) < ROWS
+            report "fastnms_orb_feed: a keypoint's rows were overwritten before it was read"
+            severity error;
+          assert 2 ** (4 + to_integer(cell_log)) <= MAX_CELL
+            report "fastnms_orb_feed: the budget's CELL is above MAX_CELL"
+            severity error;
+        end if;
+      end if;
+
+    end process kept;
+
+  -- pragma translate_on
+
+  end generate side;
+
+  -- The plain columns carry their keypoint's record on the last one; the
+  -- records leave the plain queue in the same order as their columns.
+  tags : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      tag_push   <= queue_pop(0);
+      tag_pushed <= queue_head(0);
+    end if;
+
+  end process tags;
+
+  tag_queue : entity work.fastnms_fifo
+    generic map (
+      DEPTH => QUEUE_DEPTH,
+      WIDTH => RECORD_BITS,
+      STYLE => "distributed"
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => tag_push,
+      in_ready  => open,
+      in_room2  => open,
+      in_room3  => open,
+      in_spare  => open,
+      in_data   => tag_pushed,
+      out_valid => tag_valid,
+      out_ready => plain_take and to_sl(plain_count = 30),
+      out_data  => tag_head,
+      busy      => open
+    );
+
+  plain_in     <= col_valid(0) and tag_valid;
+  col_ready(0) <= plain_rdy and tag_valid;
+  plain_take   <= plain_in and plain_rdy;
+
+  count : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if plain_take = '1' then
+        if plain_count = 30 then
+          plain_count <= 0;
+        else
+          plain_count <= plain_count + 1;
+        end if;
+      end if;
+      if rst = '1' then
+        plain_count <= 0;
+      end if;
+    end if;
+
+  end process count;
+
+  engine : entity work.fastnms_orb_describe
+    generic map (
+      LANES       => LANES,
+      RECORD_BITS => RECORD_BITS
+    )
+    port map (
+      clk            => clk,
+      rst            => rst,
+      plain_valid    => plain_in,
+      plain_ready    => plain_rdy,
+      plain_column   => columns(0)(31 * 8 - 1 downto 0),
+      plain_record   => tag_head,
+      blurred_valid  => col_valid(1),
+      blurred_ready  => col_ready(1),
+      blurred_column => columns(1),
+      out_valid      => out_valid,
+      out_ready      => out_ready,
+      out_record     => result,
+      out_angle      => out_angle,
+      out_descriptor => out_descriptor
+    );
+
+  out_x     <= unsigned(result(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS));
+  out_y     <= unsigned(result(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
+  out_score <= unsigned(result(SCORE_BITS - 1 downto 0));
+
+end architecture rtl;
