@@ -65,7 +65,7 @@ DEEPER = {
     "fastnms_orb_rows": 5,
 }
 # Entities made of the ones above, several minutes in yosys: under make test-full.
-SLOW_SYNTH = ("fastnms_orb_describe", "fastnms_orb_feed")
+SLOW_SYNTH = ("fastnms_orb_describe", "fastnms_orb_feed", "fastnms_orb_stage")
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
 

@@ -27,6 +27,20 @@
 -- it (asserted). MAX_PER_CELL = 0 builds no budget and ignores cfg_cell_log
 -- and cfg_per_cell.
 --
+-- With DESCRIPTOR = "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0, all
+-- asserted), the records are ORB keypoints (docs/orb_rtl.md, *In the core*):
+-- the NMS's records 31 pixels or more inside the frame (ORB's border), then
+-- the budget, then fastnms_orb_stage, which adds each keypoint's angle
+-- (out_angle, float32 bits, degrees) and descriptor (out_descriptor, bit i =
+-- pair i), equal to golden/orb.py's orb_features. The detector hands over
+-- its pixels and their blur with the scores (PIXELS). CELL is clamped to
+-- ORB_MAX_CELL (which sizes the rows kept). One frame at a time goes through:
+-- the detector's next frame waits at its first result until the frame
+-- before has left (the detector and the window generator go on meanwhile).
+-- With K = 0 nothing bounds the records, and a record that finds the ORB
+-- queue full is dropped (orb_dropped pulses). Without ORB out_angle and
+-- out_descriptor are 0.
+--
 -- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
 -- corner) is also presented on the tap_* ports, one beat per input beat with
 -- start-of-frame and end-of-line; the detector advances only when both the
@@ -49,34 +63,39 @@ entity fastnms_core is
     READ_LATENCY : positive := 1;
     SCORE_TAP    : boolean  := false;
     PPC          : positive := 1;
-    MAX_PER_CELL : natural  := 0
+    MAX_PER_CELL : natural  := 0;
+    DESCRIPTOR   : string   := "none";
+    ORB_MAX_CELL : positive := 16
   );
   port (
-    clk           : in    std_logic;
-    rst           : in    std_logic;
-    cfg_width     : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
-    cfg_height    : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    cfg_threshold : in    unsigned(7 downto 0);
-    cfg_cell_log  : in    unsigned(2 downto 0);
-    cfg_per_cell  : in    unsigned(3 downto 0);
-    in_valid      : in    std_logic;
-    in_ready      : out   std_logic;
-    in_data       : in    std_logic_vector(PPC * 8 - 1 downto 0);
-    in_sof        : in    std_logic;
-    in_eol        : in    std_logic;
-    out_valid     : out   std_logic;
-    out_ready     : in    std_logic;
-    out_x         : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    out_y         : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    out_score     : out   unsigned(score_width(SCORE) - 1 downto 0);
-    out_eof       : out   std_logic;
-    tap_valid     : out   std_logic;
-    tap_ready     : in    std_logic;
-    tap_score     : out   unsigned(PPC * score_width(SCORE) - 1 downto 0);
-    tap_sof       : out   std_logic;
-    tap_eol       : out   std_logic;
-    err_line      : out   std_logic;
-    err_frame     : out   std_logic
+    clk            : in    std_logic;
+    rst            : in    std_logic;
+    cfg_width      : in    unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
+    cfg_height     : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    cfg_threshold  : in    unsigned(7 downto 0);
+    cfg_cell_log   : in    unsigned(2 downto 0);
+    cfg_per_cell   : in    unsigned(3 downto 0);
+    in_valid       : in    std_logic;
+    in_ready       : out   std_logic;
+    in_data        : in    std_logic_vector(PPC * 8 - 1 downto 0);
+    in_sof         : in    std_logic;
+    in_eol         : in    std_logic;
+    out_valid      : out   std_logic;
+    out_ready      : in    std_logic;
+    out_x          : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y          : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score      : out   unsigned(score_width(SCORE) - 1 downto 0);
+    out_eof        : out   std_logic;
+    out_angle      : out   std_logic_vector(31 downto 0);
+    out_descriptor : out   std_logic_vector(255 downto 0);
+    orb_dropped    : out   std_logic;
+    tap_valid      : out   std_logic;
+    tap_ready      : in    std_logic;
+    tap_score      : out   unsigned(PPC * score_width(SCORE) - 1 downto 0);
+    tap_sof        : out   std_logic;
+    tap_eol        : out   std_logic;
+    err_line       : out   std_logic;
+    err_frame      : out   std_logic
   );
 end entity fastnms_core;
 
@@ -96,16 +115,39 @@ architecture rtl of fastnms_core is
   end function connectivity_of;
 
   constant REGION_CONNECTIVITY : positive := connectivity_of(NMS);
+  constant ORB                 : boolean  := DESCRIPTOR = "orb";
+  -- ORB's border: keypoints 31 pixels or more inside the frame.
+  constant EDGE : positive := 31;
 
-  signal d_valid  : std_logic;
-  signal d_ready  : std_logic;
-  signal d_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
-  signal d_sof    : std_logic;
-  signal d_eol    : std_logic;
-  signal d_eof    : std_logic;
-  signal d_corner : std_logic_vector(PPC - 1 downto 0);
-  signal d_width  : unsigned(cfg_width'range);
-  signal d_height : unsigned(cfg_height'range);
+  -- log2(CELL) - 4 of the largest CELL ORB's rows are sized for.
+  function cell_log_of (cell : positive) return natural is
+  begin
+
+    for k in 0 to 4 loop
+
+      if 2 ** (k + 4) >= cell then
+        return k;
+      end if;
+
+    end loop;
+
+    return 4;
+
+  end function cell_log_of;
+
+  constant ORB_CELL_LOG : natural := cell_log_of(ORB_MAX_CELL);
+
+  signal d_valid   : std_logic;
+  signal d_ready   : std_logic;
+  signal d_score   : unsigned(PPC * SCORE_BITS - 1 downto 0);
+  signal d_sof     : std_logic;
+  signal d_eol     : std_logic;
+  signal d_eof     : std_logic;
+  signal d_corner  : std_logic_vector(PPC - 1 downto 0);
+  signal d_width   : unsigned(cfg_width'range);
+  signal d_height  : unsigned(cfg_height'range);
+  signal d_pixel   : std_logic_vector(PPC * 8 - 1 downto 0); -- (ORB: PPC 1)
+  signal d_blurred : std_logic_vector(PPC * 8 - 1 downto 0);
   -- The budget's configuration, through the detector with the frame.
   signal cfg_tag : std_logic_vector(6 downto 0);
   signal d_tag   : std_logic_vector(6 downto 0);
@@ -122,6 +164,21 @@ architecture rtl of fastnms_core is
   signal n_valid : std_logic;
   signal n_ready : std_logic;
   signal t_ready : std_logic;
+  -- With ORB: its image stream (the third side of the fork), the detector's
+  -- next frame held while one is in ORB, the NMS's records inside ORB's
+  -- border, and the budget's output.
+  signal i_valid  : std_logic;
+  signal i_ready  : std_logic;
+  signal d_hold   : std_logic;
+  signal d_go     : std_logic;
+  signal keep     : std_logic;
+  signal k_valid  : std_logic;
+  signal k_ready  : std_logic;
+  signal k_x      : unsigned(out_x'range);
+  signal k_y      : unsigned(out_y'range);
+  signal k_score  : unsigned(out_score'range);
+  signal k_eof    : std_logic;
+  signal cell_log : unsigned(2 downto 0);
 
 begin
 
@@ -152,7 +209,20 @@ begin
     report "fastnms_core: NMS """ & NMS & """ takes one pixel per clock: PPC must be 1 (""3x3"" and ""none"" take 2 or 4)"
     severity failure;
 
-  cfg_tag <= std_logic_vector(cfg_cell_log) & std_logic_vector(cfg_per_cell);
+  assert DESCRIPTOR = "none" or DESCRIPTOR = "orb"
+    report "fastnms_core: DESCRIPTOR must be ""none"" or ""orb"""
+    severity failure;
+  assert not ORB or (PPC = 1 and MAX_PER_CELL > 0 and (NMS = "3x3" or NMS = "none"))
+    report "fastnms_core: DESCRIPTOR ""orb"" takes PPC 1, NMS ""3x3"" or ""none"" and a budget (MAX_PER_CELL > 0)"
+    severity failure;
+  assert not ORB or ORB_MAX_CELL = 2 ** (ORB_CELL_LOG + 4)
+    report "fastnms_core: ORB_MAX_CELL must be 16, 32, 64, 128 or 256"
+    severity failure;
+
+  -- With ORB, CELL no larger than ORB_MAX_CELL.
+  cell_log <= to_unsigned(ORB_CELL_LOG, 3) when ORB and cfg_cell_log > ORB_CELL_LOG else
+              cfg_cell_log;
+  cfg_tag  <= std_logic_vector(cell_log) & std_logic_vector(cfg_per_cell);
 
   detector : entity work.fastnms_fast_detector
     generic map (
@@ -161,7 +231,8 @@ begin
       SCORE        => SCORE,
       READ_LATENCY => READ_LATENCY,
       PPC          => PPC,
-      TAG_BITS     => d_tag'length
+      TAG_BITS     => d_tag'length,
+      PIXELS       => ORB
     )
     port map (
       clk           => clk,
@@ -182,6 +253,8 @@ begin
       out_sof       => d_sof,
       out_eol       => d_eol,
       out_eof       => d_eof,
+      out_pixel     => d_pixel,
+      out_blurred   => d_blurred,
       out_width     => d_width,
       out_height    => d_height,
       out_tag       => d_tag,
@@ -189,11 +262,15 @@ begin
       err_frame     => err_frame
     );
 
+  -- The fork: a result goes when the NMS, the tap and ORB's image stream all
+  -- take it (each side's valid waits for the others' readies).
   t_ready   <= tap_ready when SCORE_TAP else
                '1';
-  d_ready   <= n_ready and t_ready;
-  n_valid   <= d_valid and t_ready;
-  tap_valid <= d_valid and n_ready when SCORE_TAP else
+  d_go      <= d_valid and not d_hold;
+  d_ready   <= n_ready and t_ready and i_ready and not d_hold;
+  n_valid   <= d_go and t_ready and i_ready;
+  i_valid   <= d_go and n_ready and t_ready;
+  tap_valid <= d_go and n_ready and i_ready when SCORE_TAP else
                '0';
   -- Without SCORE_TAP the tap outputs are constant.
   tap_score <= d_score when SCORE_TAP else
@@ -300,12 +377,12 @@ begin
   -- ---- the budget ---------------------------------------------------------------
 
   no_budget : if MAX_PER_CELL = 0 generate
-    out_valid <= s_valid;
-    s_ready   <= out_ready;
-    out_x     <= s_x;
-    out_y     <= s_y;
-    out_score <= s_score;
-    out_eof   <= s_eof;
+    k_valid <= s_valid;
+    s_ready <= k_ready;
+    k_x     <= s_x;
+    k_y     <= s_y;
+    k_score <= s_score;
+    k_eof   <= s_eof;
   end generate no_budget;
 
   with_budget : if MAX_PER_CELL > 0 generate
@@ -353,8 +430,8 @@ begin
     -- A frame's records wait for its configuration (never long: the NMS
     -- takes several clocks from a frame's first score beat to its first
     -- record).
-    b_valid <= s_valid and q_valid;
-    s_ready <= b_ready and q_valid;
+    b_valid <= s_valid and q_valid and keep;
+    s_ready <= q_valid and (b_ready or not keep);
 
     budget : entity work.fastnms_cell_budget
       generic map (
@@ -375,12 +452,12 @@ begin
         in_row_end  => s_row_end,
         in_cell_log => unsigned(q_tag(6 downto 4)),
         in_per_cell => unsigned(q_tag(3 downto 0)),
-        out_valid   => out_valid,
-        out_ready   => out_ready,
-        out_x       => out_x,
-        out_y       => out_y,
-        out_score   => out_score,
-        out_eof     => out_eof
+        out_valid   => k_valid,
+        out_ready   => k_ready,
+        out_x       => k_x,
+        out_y       => k_y,
+        out_score   => k_score,
+        out_eof     => k_eof
       );
 
     -- pragma translate_off
@@ -398,5 +475,124 @@ begin
   -- pragma translate_on
 
   end generate with_budget;
+
+  -- ---- ORB ----------------------------------------------------------------------
+
+  no_orb : if not ORB generate
+    i_ready        <= '1';
+    d_hold         <= '0';
+    keep           <= '1';
+    out_valid      <= k_valid;
+    k_ready        <= out_ready;
+    out_x          <= k_x;
+    out_y          <= k_y;
+    out_score      <= k_score;
+    out_eof        <= k_eof;
+    out_angle      <= (others => '0');
+    out_descriptor <= (others => '0');
+    orb_dropped    <= '0';
+  end generate no_orb;
+
+  with_orb : if ORB generate
+    -- The frame in ORB (from its first result to its end-of-frame beat out),
+    -- its size, ORB's border in it, and its budget's CELL and K = 0.
+    signal busy      : std_logic;
+    signal width     : unsigned(cfg_width'range);
+    signal height    : unsigned(cfg_height'range);
+    signal x_end     : unsigned(cfg_width'range);
+    signal y_end     : unsigned(cfg_height'range);
+    signal frame_log : unsigned(2 downto 0);
+    signal drop      : std_logic;
+    signal column    : unsigned(out_x'range);
+    signal img_x     : unsigned(out_x'range);
+    signal o_valid   : std_logic;
+    signal o_eof     : std_logic;
+  begin
+
+    d_hold <= d_sof and busy;
+    img_x  <= (others => '0') when d_sof = '1' else
+              column;
+    keep   <= s_eof or s_row_end or
+              to_sl(s_x >= EDGE and s_y >= EDGE and s_x < x_end and s_y < y_end);
+
+    frames : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if d_valid = '1' and d_ready = '1' then
+          column <= img_x + 1;
+          if d_eol = '1' then
+            column <= (others => '0');
+          end if;
+          if d_sof = '1' then
+            busy      <= '1';
+            width     <= d_width;
+            height    <= d_height;
+            frame_log <= unsigned(d_tag(6 downto 4));
+            drop      <= to_sl(unsigned(d_tag(3 downto 0)) = 0);
+          end if;
+        end if;
+        -- (A frame no wider or taller than 2 EDGE has no keypoint inside.)
+        x_end <= to_unsigned(EDGE, x_end'length);
+        if width > 2 * EDGE then
+          x_end <= width - EDGE;
+        end if;
+        y_end <= to_unsigned(EDGE, y_end'length);
+        if height > 2 * EDGE then
+          y_end <= height - EDGE;
+        end if;
+        if o_valid = '1' and out_ready = '1' and o_eof = '1' then
+          busy <= '0';
+        end if;
+
+        if rst = '1' then
+          busy   <= '0';
+          column <= (others => '0');
+        end if;
+      end if;
+
+    end process frames;
+
+    orb_keypoints : entity work.fastnms_orb_stage
+      generic map (
+        MAX_WIDTH    => MAX_WIDTH,
+        MAX_HEIGHT   => MAX_HEIGHT,
+        SCORE_BITS   => SCORE_BITS,
+        LANES        => 8,
+        MAX_CELL     => 2 ** (ORB_CELL_LOG + 4),
+        MAX_PER_CELL => maximum(MAX_PER_CELL, 1)
+      )
+      port map (
+        clk            => clk,
+        rst            => rst,
+        img_valid      => i_valid,
+        img_ready      => i_ready,
+        img_first      => d_sof,
+        img_x          => img_x,
+        img_pixel      => d_pixel(7 downto 0),
+        img_blurred    => d_blurred(7 downto 0),
+        cfg_cell_log   => frame_log,
+        cfg_drop       => drop,
+        in_valid       => k_valid,
+        in_ready       => k_ready,
+        in_x           => k_x,
+        in_y           => k_y,
+        in_score       => k_score,
+        in_eof         => k_eof,
+        out_valid      => o_valid,
+        out_ready      => out_ready,
+        out_x          => out_x,
+        out_y          => out_y,
+        out_score      => out_score,
+        out_eof        => o_eof,
+        out_angle      => out_angle,
+        out_descriptor => out_descriptor,
+        dropped        => orb_dropped
+      );
+
+    out_valid <= o_valid;
+    out_eof   <= o_eof;
+
+  end generate with_orb;
 
 end architecture rtl;

@@ -37,6 +37,14 @@
 --                                          -> score (7 stages) -> mask -> skid buffer
 -- The result of beat k leaves LATENCY clocks after beat k + 3*B + ceil(3/PPC)
 -- was accepted, B = W / PPC (see docs/fastnms_fast_detector.md).
+--
+-- With PIXELS, each beat also carries its pixels (out_pixel, the windows'
+-- centres) and ORB's 7x7 Gaussian of them (out_blurred, fastnms_orb_blur, 13
+-- stages: the score waits for it, so LATENCY grows by 4 with opencv and 3
+-- with sad); ORB's keypoint blocks take both images from there, in step with
+-- the scores. Both are meaningful 3 pixels or more inside the frame, where
+-- the window is (ORB reads nothing nearer the border). Without PIXELS both
+-- are 0.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -52,7 +60,8 @@ entity fastnms_fast_detector is
     SCORE        : string   := "opencv";
     READ_LATENCY : positive := 1;
     PPC          : positive := 1;
-    TAG_BITS     : positive := 1
+    TAG_BITS     : positive := 1;
+    PIXELS       : boolean  := false
   );
   port (
     clk           : in    std_logic;
@@ -73,6 +82,8 @@ entity fastnms_fast_detector is
     out_sof       : out   std_logic;
     out_eol       : out   std_logic;
     out_eof       : out   std_logic;
+    out_pixel     : out   std_logic_vector(PPC * 8 - 1 downto 0);
+    out_blurred   : out   std_logic_vector(PPC * 8 - 1 downto 0);
     out_width     : out   unsigned(bits_for(MAX_WIDTH) - 1 downto 0);
     out_height    : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     out_tag       : out   std_logic_vector(TAG_BITS - 1 downto 0);
@@ -86,8 +97,34 @@ architecture rtl of fastnms_fast_detector is
   constant CIRCLE_STAGES  : positive := 2;
   constant SEGMENT_STAGES : positive := 3;
   constant SCORE_STAGES   : positive := score_latency(SCORE);
-  -- Stages after the window generator: circle differences, then the score.
-  constant STAGES     : positive := CIRCLE_STAGES + SCORE_STAGES;
+  constant BLUR_STAGES    : positive := 13;
+  -- Stages after the window generator: circle differences, then the score
+  -- (then, with PIXELS, a wait for the blur).
+  constant SCORED : positive := CIRCLE_STAGES + SCORE_STAGES;
+
+  function stages_for (pixels : boolean) return positive is
+  begin
+
+    if pixels then
+      return maximum(SCORED, BLUR_STAGES);
+    end if;
+
+    return SCORED;
+
+  end function stages_for;
+
+  function pixel_bits (pixels : boolean) return natural is
+  begin
+
+    if pixels then
+      return 2 * PPC * 8;
+    end if;
+
+    return 0;
+
+  end function pixel_bits;
+
+  constant STAGES     : positive := stages_for(PIXELS);
   constant SCORE_BITS : positive := score_width(SCORE);
   -- The window generator's block: WINDOW_SIZE rows of BLOCK_COLS pixels.
   constant BLOCK_COLS : positive := WINDOW_SIZE - 1 + PPC;
@@ -96,6 +133,10 @@ architecture rtl of fastnms_fast_detector is
   subtype lanes_t is std_logic_vector(PPC - 1 downto 0);
 
   type corners_t is array (CIRCLE_STAGES + SEGMENT_STAGES + 1 to STAGES) of lanes_t;
+
+  -- The result without, then with, the pixels and their blur.
+  constant RESULT_BITS : positive := PPC * (SCORE_BITS + 1) + 3;
+  constant SKID_BITS   : positive := RESULT_BITS + pixel_bits(PIXELS);
 
   -- Markers of a beat in flight beside its data.
   type token_t is record
@@ -131,8 +172,11 @@ architecture rtl of fastnms_fast_detector is
 
   signal result_corner : lanes_t;
   signal result_score  : unsigned(PPC * SCORE_BITS - 1 downto 0);
-  signal result        : std_logic_vector(PPC * (SCORE_BITS + 1) + 2 downto 0);
-  signal skid_out      : std_logic_vector(PPC * (SCORE_BITS + 1) + 2 downto 0);
+  signal result        : std_logic_vector(SKID_BITS - 1 downto 0);
+  signal skid_out      : std_logic_vector(SKID_BITS - 1 downto 0);
+  -- With PIXELS: each lane's centre pixel and blur, level with the result.
+  signal result_pixel   : std_logic_vector(PPC * 8 - 1 downto 0);
+  signal result_blurred : std_logic_vector(PPC * 8 - 1 downto 0);
 
 begin
 
@@ -218,6 +262,7 @@ begin
     signal below       : circle_flags_t;
     signal diff        : circle_bytes_t;
     signal lane_score  : unsigned(SCORE_BITS - 1 downto 0);
+    signal score_out   : unsigned(SCORE_BITS - 1 downto 0);
 
   begin
 
@@ -275,11 +320,81 @@ begin
 
     end generate sad;
 
+    -- The score, level with the markers (later than SCORED with PIXELS).
+
+    score_level : if STAGES = SCORED generate
+      score_out <= lane_score;
+    end generate score_level;
+
+    score_wait : if STAGES > SCORED generate
+
+      type scores_t is array (SCORED + 1 to STAGES) of unsigned(SCORE_BITS - 1 downto 0);
+
+      signal waiting : scores_t;
+
+    begin
+
+      wait_stages : process (clk) is
+      begin
+
+        if rising_edge(clk) then
+          if advance = '1' then
+            waiting(SCORED + 1) <= lane_score;
+            for stage in SCORED + 2 to STAGES loop
+              waiting(stage) <= waiting(stage - 1);
+            end loop;
+          end if;
+        end if;
+
+      end process wait_stages;
+
+      score_out <= waiting(STAGES);
+
+    end generate score_wait;
+
     -- The mask: a pixel outside the border or not a corner scores 0.
     result_corner(lane)                                                <= corners(STAGES)(lane) and tokens(STAGES).inside(lane);
     result_score((lane + 1) * SCORE_BITS - 1 downto lane * SCORE_BITS) <=
-                                                                          lane_score when result_corner(lane) = '1' else
+                                                                          score_out when result_corner(lane) = '1' else
                                                                           (others => '0');
+
+    blurs : if PIXELS generate
+
+      type pixels_t is array (1 to STAGES) of std_logic_vector(7 downto 0);
+
+      -- The centre's place in the window, row by row.
+      constant CENTRE : natural := (WINDOW_SIZE / 2) * (WINDOW_SIZE + 1);
+
+      signal centres : pixels_t;
+
+    begin
+
+      blur : entity work.fastnms_orb_blur
+        port map (
+          clk     => clk,
+          en      => advance,
+          window  => lane_window,
+          blurred => result_blurred(8 * lane + 7 downto 8 * lane)
+        );
+
+      -- The centre pixel waits beside the blur (BLUR_STAGES = STAGES).
+      centre_stages : process (clk) is
+      begin
+
+        if rising_edge(clk) then
+          if advance = '1' then
+            centres(1) <= lane_window(CENTRE * 8 + 7 downto CENTRE * 8);
+            for stage in 2 to STAGES loop
+              centres(stage) <= centres(stage - 1);
+            end loop;
+          end if;
+        end if;
+
+      end process centre_stages;
+
+      result_pixel(8 * lane + 7 downto 8 * lane) <= centres(STAGES);
+
+    end generate blurs;
 
   end generate lanes;
 
@@ -309,12 +424,23 @@ begin
 
   end process delays;
 
-  result <= tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol & result_corner &
-            std_logic_vector(result_score);
+  result(RESULT_BITS - 1 downto 0) <= tokens(STAGES).eof & tokens(STAGES).sof & tokens(STAGES).eol &
+                                      result_corner & std_logic_vector(result_score);
+
+  with_pixels : if PIXELS generate
+    result(SKID_BITS - 1 downto RESULT_BITS) <= result_blurred & result_pixel;
+    out_pixel                                <= skid_out(RESULT_BITS + PPC * 8 - 1 downto RESULT_BITS);
+    out_blurred                              <= skid_out(SKID_BITS - 1 downto RESULT_BITS + PPC * 8);
+  end generate with_pixels;
+
+  without_pixels : if not PIXELS generate
+    out_pixel   <= (others => '0');
+    out_blurred <= (others => '0');
+  end generate without_pixels;
 
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
-      WIDTH => result'length
+      WIDTH => SKID_BITS
     )
     port map (
       clk       => clk,

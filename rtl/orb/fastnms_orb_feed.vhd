@@ -123,6 +123,7 @@ architecture rtl of fastnms_orb_feed is
 
   -- The plain columns' records, one per keypoint, taken with its last column.
   signal tag_valid,   tag_push  : std_logic;
+  signal tag_room               : std_logic;
   signal tag_head               : std_logic_vector(RECORD_BITS - 1 downto 0);
   signal tag_pushed             : std_logic_vector(RECORD_BITS - 1 downto 0);
   signal plain_count            : natural range 0 to 30;
@@ -172,6 +173,16 @@ begin
     signal dx     : natural range 0 to HEIGHT - 1;
     signal head_x : natural range 0 to 2 ** X_BITS - 1;
     signal head_y : natural range 0 to 2 ** Y_BITS - 1;
+    -- Clocks until the keypoint's first request (its top row computed).
+    signal warm   : natural range 0 to 3;
+    signal back   : natural range 0 to 2 ** Y_BITS - 1;
+    signal phys_r : natural range 0 to ROWS - 1;
+    signal top_r  : integer range -(2 ** Y_BITS) to ROWS - 1;
+    -- The start condition's and the room's operands, a clock ahead.
+    signal after_half : natural range 0 to 2 ** Y_BITS - 1;
+    signal past_half  : boolean;
+    signal limit      : natural range 0 to 2 ** Y_BITS + ROWS;
+    signal pending_r  : boolean;
   begin
 
     x <= in_x((1 - s) * X_BITS + X_BITS - 1 downto (1 - s) * X_BITS);
@@ -232,10 +243,9 @@ begin
       variable hy       : natural range 0 to 2 ** Y_BITS - 1;
       variable d        : natural range 0 to HEIGHT - 1;
       variable b, v     : std_logic;
+      variable w        : natural range 0 to 3;
       variable row      : natural range 0 to 2 ** Y_BITS;
       variable phys     : natural range 0 to ROWS - 1;
-      variable top      : integer;
-      variable back     : integer;
       variable low      : natural range 0 to 2 ** Y_BITS - 1;
       variable pending  : boolean;
       variable low_bits : unsigned(Y_BITS - 1 downto 0);
@@ -259,14 +269,19 @@ begin
         end if;
         current  <= row mod 2 ** Y_BITS;
         physical <= phys;
+        -- Rows complete below HALF + 1 rows under the current one (a clock
+        -- late: a keypoint starts a clock later at most).
+        after_half <= (current + 2 ** Y_BITS - HALF - 1) mod 2 ** Y_BITS;
+        past_half  <= current > HALF;
 
-        -- The request presented: the next column, or the first of the head
-        -- record once its last row is complete.
+        -- The request presented: the next column, or, three clocks after the
+        -- head record is taken (once its last row is complete), its first.
         hx := head_x;
         hy := head_y;
         d  := dx;
         b  := busy;
         v  := rd_valid;
+        w  := warm;
         if rd_valid = '1' and rd_ready = '1' then
           if dx = HEIGHT - 1 then
             b := '0';
@@ -275,37 +290,57 @@ begin
             d := dx + 1;
           end if;
         end if;
+        if warm = 1 then
+          v := '1';
+        end if;
+        if warm > 0 then
+          w := warm - 1;
+        end if;
         y := to_integer(unsigned(queue_head(s)(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS)));
-        if b = '0' and queue_valid(s) = '1' and queue_pop(s) = '0' and current > y + HALF then
+        if b = '0' and queue_valid(s) = '1' and queue_pop(s) = '0' and past_half and after_half >= y then
           b            := '1';
-          v            := '1';
           d            := 0;
+          w            := 3;
           hx           := to_integer(unsigned(queue_head(s)(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS)));
           hy           := y;
           queue_pop(s) <= '1';
         end if;
         busy     <= b;
         rd_valid <= v;
+        warm     <= w;
         dx       <= d;
         head_x   <= hx;
         head_y   <= hy;
         -- (Wrapped like the hardware's adds when no keypoint is in.)
         rd_x <= to_unsigned((hx + d + 2 ** X_BITS - HALF) mod 2 ** X_BITS, X_BITS);
-        -- The top row's physical number, from the current row's: back rows
-        -- above it (0 .. ROWS - 1 for a keypoint whose rows are kept).
-        back := row + HALF - hy;
-        if back < 0 or back >= ROWS then
-          back := 0;
+
+        -- The top row's physical number, a row's slot being fixed until it is
+        -- overwritten: the current row's, less the rows between them (0 ..
+        -- ROWS - 1 for a keypoint whose rows are kept), in three steps from
+        -- registers while the keypoint warms up (warm 3, 2, 1).
+        if warm = 3 then
+          back   <= (current + HALF + 2 ** Y_BITS - head_y) mod 2 ** Y_BITS;
+          phys_r <= physical;
         end if;
-        top := phys - back;
-        if top < 0 then
-          top := top + ROWS;
+        if warm = 2 then
+          top_r <= phys_r;
+          if back < ROWS then
+            top_r <= phys_r - back;
+          end if;
         end if;
-        rd_top <= to_unsigned(top, rd_top'length);
+        if warm = 1 then
+          if top_r < 0 then
+            rd_top <= to_unsigned(top_r + ROWS, rd_top'length);
+          else
+            rd_top <= to_unsigned(top_r, rd_top'length);
+          end if;
+        end if;
 
         -- A new row may start while it overwrites no row a pending keypoint
         -- needs. The keypoints come a cell row at a time, so none is above the
         -- first line of the oldest one's cell row (its y rounded down to CELL).
+        -- From registers, two clocks late: rows start a whole line apart, and
+        -- a keypoint arrives long before its rows could be overwritten.
         pending := b = '1' or queue_valid(s) = '1' or (key_valid = '1' and key_ready = '1');
         low     := to_integer(key_y);
         if b = '1' then
@@ -323,8 +358,11 @@ begin
 
         end loop;
 
-        low  := to_integer(low_bits);
-        room <= to_sl(not pending or row + 1 + HALF < low + ROWS);
+        -- The next row overwrites row current + 1 - ROWS: it must stay above
+        -- the rows from HALF above that line.
+        limit     <= to_integer(low_bits) + ROWS - 1 - HALF;
+        pending_r <= pending;
+        room      <= to_sl(not pending_r or current < limit);
         -- Idle: nothing pending for a few clocks, the last requests read.
         if pending then
           quiet <= 0;
@@ -334,13 +372,15 @@ begin
         idle <= to_sl(not pending and quiet >= 6);
 
         if rst = '1' then
-          busy     <= '0';
-          rd_valid <= '0';
-          current  <= 0;
-          physical <= 0;
-          room     <= '1';
-          idle     <= '1';
-          quiet    <= 7;
+          busy      <= '0';
+          rd_valid  <= '0';
+          warm      <= 0;
+          current   <= 0;
+          physical  <= 0;
+          room      <= '1';
+          pending_r <= false;
+          idle      <= '1';
+          quiet     <= 7;
         end if;
       end if;
 
@@ -368,7 +408,10 @@ begin
   end generate side;
 
   -- The plain columns carry their keypoint's record on the last one; the
-  -- records leave the plain queue in the same order as their columns.
+  -- records leave the plain queue in the same order as their columns. The
+  -- tag queue never refuses one: a record waits in it only while its
+  -- keypoint's columns are requested or wait in the rows' 16-word FIFO, so
+  -- it holds three at most (simulation checks it).
   tags : process (clk) is
   begin
 
@@ -378,6 +421,20 @@ begin
     end if;
 
   end process tags;
+
+  -- pragma translate_off
+  tag_check : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      assert not (rst = '0' and tag_push = '1' and tag_room = '0')
+        report "fastnms_orb_feed: the tag queue is full"
+        severity failure;
+    end if;
+
+  end process tag_check;
+
+  -- pragma translate_on
 
   tag_queue : entity work.fastnms_fifo
     generic map (
@@ -389,7 +446,7 @@ begin
       clk       => clk,
       rst       => rst,
       in_valid  => tag_push,
-      in_ready  => open,
+      in_ready  => tag_room,
       in_room2  => open,
       in_room3  => open,
       in_spare  => open,

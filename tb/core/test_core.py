@@ -100,3 +100,31 @@ def test_core_ppc(request, score, nms, ppc):
             "TB_CROPS": json.dumps(testimages.photo_crops([20, 10, 40])[:2]),
         },
     )
+
+
+ORB_GENERICS = {"MAX_WIDTH": 128, "MAX_HEIGHT": 96, "MAX_PER_CELL": 15, "DESCRIPTOR": "orb"}
+
+
+@pytest.mark.parametrize(
+    ("generics", "frames"),
+    [
+        pytest.param({}, "noise,narrow", id="cell16"),
+        pytest.param({}, "photo,flat,noise", id="photo", marks=pytest.mark.slow),
+        pytest.param(
+            {"ORB_MAX_CELL": 32, "NMS": "none", "SCORE": "sad"},
+            "cell32,cell256,off,off_noise,photo",
+            id="cell32",
+            marks=pytest.mark.slow,
+        ),
+    ],
+)
+def test_core_orb(request, generics, frames):
+    """DESCRIPTOR "orb": whole frames back to back, each with its CELL and K, every
+    keypoint's record, angle bits and descriptor equal to orb.orb_features."""
+    run_cocotb(
+        "fastnms_core",
+        "core_orb_tb",
+        {**ORB_GENERICS, **generics},
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2", "TB_FRAMES": frames},
+    )

@@ -1,5 +1,6 @@
 """cocotb testbench of fastnms_fast_detector: every pixel's corner flag and
-score against the golden model (fastnms.fast.fast_maps)."""
+score against the golden model (fastnms.fast.fast_maps); with PIXELS, every
+pixel and its blur against the image and orb.gaussian_blur, 3 or more pixels inside the frame."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+from fastnms.golden import orb
 from fastnms.golden.fast import fast_maps
 from fastnms.testing import images as testimages
 
@@ -22,20 +24,23 @@ SCORE = GENERICS["SCORE"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
 SCORE_BITS = 12 if SCORE == "sad" else 8
+PIXELS = GENERICS.get("PIXELS", False)
 MIN_WIDTH = min_width(7, PPC, LATENCY)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 THRESHOLDS = [0, 1, 10, 20, 50, 128, 254, 255]
 # Clocks from the acceptance of beat k + 3*B + ceil(3/PPC) to the transfer of
 # result k (B = W / PPC beats per row).
-RESULT_LATENCY = LATENCY + (13 if SCORE == "sad" else 12)
+# With PIXELS the score waits for the 13-stage blur.
+RESULT_LATENCY = LATENCY + (16 if PIXELS else 13 if SCORE == "sad" else 12)
 
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
         super().__init__(
             dut,
-            ["corner", "score", "sof", "eol", "eof", "width", "height"],
+            ["corner", "score", "sof", "eol", "eof", "width", "height"]
+            + (["pixel", "blurred"] if PIXELS else []),
             idle,
             stall,
             ppc=PPC,
@@ -91,6 +96,30 @@ def check_frame(img: np.ndarray, threshold: int, beats: list[dict], label: str) 
             f"{label}: {len(bad)} pixels differ; first at (x={x}, y={y}): "
             f"rtl corner={int(got_corner[y, x])} score={got_score[y, x]}, "
             f"golden corner={int(want_corner[y, x])} score={want_score[y, x]}"
+        )
+    if PIXELS:
+        check_pixels(img, beats, label)
+
+
+def check_pixels(img: np.ndarray, beats: list[dict], label: str) -> None:
+    """out_pixel is the image and out_blurred its ORB blur wherever the 7x7 window is inside
+    (the border's windows are not the image's: no ORB sample reaches them)."""
+    h, w = img.shape
+
+    def plane(name: str) -> np.ndarray:
+        values = [(b[name] >> (8 * i)) & 255 for b in beats for i in range(PPC)]
+        return np.array(values, dtype=np.uint8).reshape(h, w)
+
+    pixel, blurred = plane("pixel"), plane("blurred")
+    inner = img[3 : h - 3, 3 : w - 3]
+    assert np.array_equal(pixel[3 : h - 3, 3 : w - 3], inner), f"{label}: out_pixel differs"
+    want = orb.gaussian_blur(img)[3 : h - 3, 3 : w - 3]
+    bad = np.argwhere(blurred[3 : h - 3, 3 : w - 3] != want)
+    if len(bad):
+        y, x = bad[0] + 3
+        raise AssertionError(
+            f"{label}: {len(bad)} blurred pixels differ; first at (x={x}, y={y}): "
+            f"rtl {blurred[y, x]}, golden {orb.gaussian_blur(img)[y, x]}"
         )
 
 

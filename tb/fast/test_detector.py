@@ -24,6 +24,20 @@ def test_detector_generated(request, score, idle, stall):
     )
 
 
+@pytest.mark.parametrize("score", ["opencv", "sad"])
+def test_detector_pixels(request, score):
+    """PIXELS (ORB's images): every pixel and its blur, with the scores, on generated
+    frames and one photograph crop, and the clock count with the score waiting for the blur."""
+    run_cocotb(
+        "fastnms_fast_detector",
+        "detector_tb",
+        {**SMALL, "MAX_WIDTH": 48, "SCORE": score, "PIXELS": True},
+        testcase="generated_images,throughput",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.2", "TB_STALL": "0.2"},
+    )
+
+
 @pytest.mark.parametrize("ppc", [2, 4])
 @pytest.mark.parametrize("score", ["opencv", "sad"])
 def test_detector_ppc(request, score, ppc):

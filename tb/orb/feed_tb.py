@@ -19,7 +19,7 @@ from fastnms.golden import orb
 from fastnms.golden.image import load_grey
 from fastnms.testing import images as testimages
 
-from tb.orb.patches import random_crop
+from tb.orb.patches import budget_order, random_crop
 from tb.stream import StreamSink, StreamSource
 
 HEIGHT, WIDTH = 96, 128
@@ -44,22 +44,10 @@ def keypoint_groups(img: np.ndarray, threshold: int, per_cell: int):
     """The golden model's kept keypoints, by cell row, and the expected results in the
     order they are sent (a cell row at a time, its cells left to right, best first)."""
     f = orb.orb_features(img, threshold, "opencv", "3x3", cell=CELL, per_cell=per_cell)
-    rec = f.records
-    order = np.lexsort((rec[:, 0], rec[:, 1], -rec[:, 2], rec[:, 0] // CELL, rec[:, 1] // CELL))
+    want = budget_order(f, CELL)
     groups: dict[int, list[dict[str, int]]] = {}
-    want = []
-    for i in order:
-        x, y, score = (int(v) for v in rec[i, :3])
+    for x, y, score, _, _ in want:
         groups.setdefault(y // CELL, []).append({"x": x, "y": y, "score": score})
-        want.append(
-            (
-                x,
-                y,
-                score,
-                int(f.angles[i : i + 1].view(np.uint32)[0]),
-                int.from_bytes(f.descriptors[i].tobytes(), "little"),
-            )
-        )
     return groups, want
 
 

@@ -94,6 +94,8 @@ def test_orb_rows(request, height, slots):
     )
 
 
+# Under slow: tb/core/test_core.py::test_core_orb runs the feed inside the core in `make test`.
+@pytest.mark.slow
 def test_orb_feed(request):
     run_cocotb(
         "fastnms_orb_feed",

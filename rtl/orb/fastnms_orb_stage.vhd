@@ -1,0 +1,250 @@
+-- ORB in the core: the budget's records in, each keypoint's record with its
+-- angle and descriptor out, then the frame's end-of-frame beat.
+--
+--   records ─► queue (a cell row of records) ─► fastnms_orb_feed ─► out
+--   image + blurred image (one stream) ───────► fastnms_orb_feed     ▲
+--   end of frame ─── waits until every record has left ──────────────┘
+--
+-- The queue holds a whole cell row's kept records (ceil(MAX_WIDTH / 16) x
+-- MAX_PER_CELL, the most with CELL 16). Without it the core could deadlock on
+-- dense content: while the feed waits for the rows below a cell row's last
+-- line, the budget, its drain stalled, would hold the record stream, and so
+-- the detector that brings those rows. With it the budget's drain of a cell
+-- row always ends: by the time the budget needs that bank again, every
+-- record the feed can read has been read, and the rest of the row fits in
+-- the queue (docs/orb_rtl.md, *In the core*).
+--
+-- With cfg_drop (the budget off, K = 0) records come in raster order as the
+-- NMS finds them and nothing bounds them: a record that finds the queue full
+-- is dropped (`dropped` pulses) instead of holding the stream.
+--
+-- Records in: keypoints 31 pixels or more inside the frame, as
+-- fastnms_orb_feed takes them; in_eof the end-of-frame beat (its x, y kept).
+-- Out: the records in the feed's order, out_eof = '0', then the end-of-frame
+-- beat (out_eof = '1', angle and descriptor 0). cfg_cell_log and cfg_drop
+-- hold for a frame (the core takes one frame at a time through ORB).
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+
+entity fastnms_orb_stage is
+  generic (
+    MAX_WIDTH    : positive := 1920;
+    MAX_HEIGHT   : positive := 1080;
+    SCORE_BITS   : positive := 8;
+    LANES        : positive := 8;
+    MAX_CELL     : positive := 16;
+    MAX_PER_CELL : positive := 15
+  );
+  port (
+    clk : in    std_logic;
+    rst : in    std_logic;
+    -- The image and its blur, one pixel of each per beat, raster order.
+    img_valid      : in    std_logic;
+    img_ready      : out   std_logic;
+    img_first      : in    std_logic;
+    img_x          : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    img_pixel      : in    std_logic_vector(7 downto 0);
+    img_blurred    : in    std_logic_vector(7 downto 0);
+    cfg_cell_log   : in    unsigned(2 downto 0);
+    cfg_drop       : in    std_logic;
+    in_valid       : in    std_logic;
+    in_ready       : out   std_logic;
+    in_x           : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    in_y           : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    in_score       : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_eof         : in    std_logic;
+    out_valid      : out   std_logic;
+    out_ready      : in    std_logic;
+    out_x          : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    out_y          : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
+    out_score      : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_eof        : out   std_logic;
+    out_angle      : out   std_logic_vector(31 downto 0);
+    out_descriptor : out   std_logic_vector(255 downto 0);
+    dropped        : out   std_logic
+  );
+end entity fastnms_orb_stage;
+
+architecture rtl of fastnms_orb_stage is
+
+  constant X_BITS      : positive := clog2(MAX_WIDTH);
+  constant Y_BITS      : positive := bits_for(MAX_HEIGHT);
+  constant RECORD_BITS : positive := X_BITS + Y_BITS + SCORE_BITS;
+  -- A cell row's records at most: ceil(MAX_WIDTH / 16) cells of MAX_PER_CELL.
+  constant ROW_RECORDS : positive := (MAX_WIDTH + 15) / 16 * MAX_PER_CELL;
+  constant QUEUE_DEPTH : positive := maximum(16, ROW_RECORDS);
+  -- Records in the queue and the feed: the queue's words, the feed's two
+  -- queues of 16 and what its engine holds.
+  constant MAX_PENDING : positive := 2 ** clog2(QUEUE_DEPTH) + 256;
+
+  signal plain_ready   : std_logic;
+  signal blurred_ready : std_logic;
+
+  signal is_record : std_logic;
+  signal push      : std_logic;
+  signal q_ready   : std_logic;
+  signal q_valid   : std_logic;
+  signal q_taken   : std_logic;
+  signal q_data    : std_logic_vector(RECORD_BITS - 1 downto 0);
+  signal key_ready : std_logic;
+  signal f_valid   : std_logic;
+  signal f_ready   : std_logic;
+  signal f_x       : unsigned(out_x'range);
+  signal f_y       : unsigned(out_y'range);
+  signal f_score   : unsigned(out_score'range);
+  signal f_angle   : std_logic_vector(31 downto 0);
+  signal f_desc    : std_logic_vector(255 downto 0);
+  signal pending   : natural range 0 to MAX_PENDING;
+  signal none_left : std_logic;
+  signal eof_held  : std_logic;
+  signal eof_x     : unsigned(out_x'range);
+  signal eof_y     : unsigned(out_y'range);
+
+begin
+
+  assert MAX_PER_CELL <= 15
+    report "fastnms_orb_stage: MAX_PER_CELL must be 1 .. 15"
+    severity failure;
+
+  -- One image stream into the feed's two: a beat goes when both take it.
+  img_ready <= plain_ready and blurred_ready;
+
+  -- A record goes into the queue; with cfg_drop it is dropped when the
+  -- queue is full. The end of frame waits until every record has left, and
+  -- nothing passes while it waits to leave.
+  is_record <= in_valid and not in_eof and not eof_held;
+  push      <= is_record and q_ready;
+  dropped   <= is_record and not q_ready and cfg_drop;
+  none_left <= to_sl(pending = 0);
+  in_ready  <= '0' when eof_held = '1' else
+               none_left when in_eof = '1' else
+               q_ready or cfg_drop;
+
+  queue : entity work.fastnms_fifo
+    generic map (
+      DEPTH => QUEUE_DEPTH,
+      WIDTH => RECORD_BITS,
+      STYLE => "block"
+    )
+    port map (
+      clk       => clk,
+      rst       => rst,
+      in_valid  => push,
+      in_ready  => q_ready,
+      in_room2  => open,
+      in_room3  => open,
+      in_spare  => open,
+      in_data   => std_logic_vector(in_x) & std_logic_vector(in_y) & std_logic_vector(in_score),
+      out_valid => q_valid,
+      out_ready => key_ready,
+      out_data  => q_data,
+      busy      => open
+    );
+
+  q_taken <= q_valid and key_ready;
+
+  feed : entity work.fastnms_orb_feed
+    generic map (
+      MAX_WIDTH  => MAX_WIDTH,
+      MAX_HEIGHT => MAX_HEIGHT,
+      SCORE_BITS => SCORE_BITS,
+      LANES      => LANES,
+      MAX_CELL   => MAX_CELL
+    )
+    port map (
+      clk            => clk,
+      rst            => rst,
+      plain_valid    => img_valid and blurred_ready,
+      plain_ready    => plain_ready,
+      plain_first    => img_first,
+      plain_x        => img_x,
+      plain_pixel    => img_pixel,
+      blurred_valid  => img_valid and plain_ready,
+      blurred_ready  => blurred_ready,
+      blurred_first  => img_first,
+      blurred_x      => img_x,
+      blurred_pixel  => img_blurred,
+      key_valid      => q_valid,
+      key_ready      => key_ready,
+      key_x          => unsigned(q_data(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS)),
+      key_y          => unsigned(q_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS)),
+      key_score      => unsigned(q_data(SCORE_BITS - 1 downto 0)),
+      cell_log       => cfg_cell_log,
+      out_valid      => f_valid,
+      out_ready      => f_ready,
+      out_x          => f_x,
+      out_y          => f_y,
+      out_score      => f_score,
+      out_angle      => f_angle,
+      out_descriptor => f_desc
+    );
+
+  -- The feed's records, then the held end of frame (none is in the feed
+  -- while it is held).
+  f_ready        <= out_ready and not eof_held;
+  out_valid      <= eof_held or f_valid;
+  out_eof        <= eof_held;
+  out_x          <= eof_x when eof_held = '1' else
+                    f_x;
+  out_y          <= eof_y when eof_held = '1' else
+                    f_y;
+  out_score      <= (others => '0') when eof_held = '1' else
+                    f_score;
+  out_angle      <= (others => '0') when eof_held = '1' else
+                    f_angle;
+  out_descriptor <= (others => '0') when eof_held = '1' else
+                    f_desc;
+
+  counts : process (clk) is
+
+    variable count : natural range 0 to MAX_PENDING;
+
+  begin
+
+    if rising_edge(clk) then
+      count := pending;
+      if push = '1' then
+        count := count + 1;
+      end if;
+      if f_valid = '1' and f_ready = '1' then
+        count := count - 1;
+      end if;
+      pending <= count;
+
+      if in_valid = '1' and in_eof = '1' and eof_held = '0' and none_left = '1' then
+        eof_held <= '1';
+        eof_x    <= in_x;
+        eof_y    <= in_y;
+      elsif out_ready = '1' then
+        eof_held <= '0';
+      end if;
+
+      if rst = '1' then
+        pending  <= 0;
+        eof_held <= '0';
+      end if;
+    end if;
+
+  end process counts;
+
+  -- pragma translate_off
+  checks : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      if rst = '0' then
+        assert not (q_taken = '1' and pending = 0)
+          report "fastnms_orb_stage: a record left that was never counted"
+          severity failure;
+      end if;
+    end if;
+
+  end process checks;
+
+-- pragma translate_on
+
+end architecture rtl;
