@@ -19,7 +19,7 @@ from fastnms.golden.image import load_grey
 from fastnms.testing import images as testimages
 
 from tb.orb.patches import budget_order, random_crop
-from tb.video import VideoTB
+from tb.video import VideoTB, frame_beats
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_WIDTH, MAX_HEIGHT = GENERICS["MAX_WIDTH"], GENERICS["MAX_HEIGHT"]
@@ -105,18 +105,12 @@ async def equals_the_model(dut):
     sending = cocotb.start_soon(tb.send_frames([f[0] for f in frames], cfgs))
     await tb.wait_frames(len(frames))
     await sending
-    got_frames: list[list[dict]] = [[]]
-    for beat in tb.sink.beats:
-        if beat["eof"]:
-            got_frames.append([])
-        else:
-            got_frames[-1].append(beat)
+    got_frames = split_beats(tb.sink.beats)
     dropped_total = 0
     for n, ((img, t, cell, k), got) in enumerate(zip(frames, got_frames, strict=False)):
         cell = min(cell, ORB_MAX_CELL)
-        f = orb.orb_features(img, t, SCORE, NMS, cell=cell, per_cell=min(k, MAX_PER_CELL))
-        want = budget_order(f, cell)
-        have = [(b["x"], b["y"], b["score"], b["angle"], b["descriptor"]) for b in got]
+        want = model_records(img, t, cell, min(k, MAX_PER_CELL))
+        have = got_records(got)
         label = f"frame {n} ({KINDS[n]}, {img.shape[1]}x{img.shape[0]} t={t} CELL {cell} K {k})"
         if k == 0:  # raster order, some possibly dropped
             want = sorted(want, key=lambda r: (r[1], r[0]))
@@ -136,3 +130,76 @@ async def equals_the_model(dut):
     if "off_noise" in KINDS:
         assert tb.dropped > 0, "K = 0 on noise at t = 0 must overflow ORB's queue"
     assert tb.err_line == 0 and tb.err_frame == 0
+
+
+def model_records(img: np.ndarray, t: int, cell: int, k: int) -> list[tuple]:
+    f = orb.orb_features(img, t, SCORE, NMS, cell=cell, per_cell=k)
+    return budget_order(f, cell)
+
+
+def got_records(beats: list[dict]) -> list[tuple]:
+    return [(b["x"], b["y"], b["score"], b["angle"], b["descriptor"]) for b in beats]
+
+
+@cocotb.test()
+async def bad_input_then_exact(dut):
+    """A frame cut short (the next frame's first pixel comes early), then a reset while a
+    frame's keypoints are in ORB: nothing hangs, and the frames after each are exact."""
+    tb = TB(dut)
+    rng = random.Random(cocotb.RANDOM_SEED)
+    nrng = np.random.default_rng(rng.getrandbits(32))
+    photos = [load_grey(p) for p in testimages.real_images()[:3]]
+    w, h = 96, 80
+    noise = [nrng.integers(0, 256, size=(h, w), dtype=np.uint8) for _ in range(3)]
+    photo = random_crop(rng, photos, w)[:h, :w]
+    cfg = {"width": w, "height": h, "threshold": 0, "cell_log": 0, "per_cell": MAX_PER_CELL}
+    tb.set_cfg(**cfg)
+    await tb.reset()
+    cocotb.start_soon(tb.count())
+
+    async def frame(img: np.ndarray, rows: int | None = None) -> None:
+        beats = frame_beats(img)
+        await tb.source.send(beats if rows is None else beats[: rows * w])
+
+    # A frame cut after 40 rows, completed by the next frame's first pixel; that frame exact.
+    await frame(noise[0], rows=40)
+    await frame(noise[1])
+    await tb.wait_frames(2)
+    assert tb.err_frame > 0, "the cut frame was not flagged"
+    want = model_records(noise[1], 0, 16, MAX_PER_CELL)
+    got = got_records(split_beats(tb.sink.beats)[1])
+    assert got == want, f"the frame after the cut one: {len(got)} records, model {len(want)}"
+    dut._log.info("after a cut frame: %d keypoints, equal", len(got))
+
+    # A reset once the frame is in but before its keypoints are all out.
+    await frame(noise[2])
+    while dut.out_valid.value == 0:
+        await RisingEdge(dut.clk)
+    for _ in range(100):
+        await RisingEdge(dut.clk)
+    dut.rst.value = 1
+    for _ in range(3):
+        await RisingEdge(dut.clk)
+    dut.rst.value = 0
+    before = len(tb.sink.beats)
+    tb.set_cfg(**{**cfg, "threshold": 10, "per_cell": 4})
+    for _ in range(3):
+        await RisingEdge(dut.clk)
+    await frame(photo)
+    eofs = sum(b["eof"] for b in tb.sink.beats[:before])
+    await tb.wait_frames(eofs + 1)
+    got = got_records(split_beats(tb.sink.beats[before:])[0])
+    want = model_records(photo, 10, 16, 4)
+    assert got == want, f"the frame after a reset: {len(got)} records, model {len(want)}"
+    dut._log.info("after a reset: %d keypoints, equal", len(got))
+
+
+def split_beats(beats: list[dict]) -> list[list[dict]]:
+    """The beats of each frame, without its end-of-frame beat."""
+    frames: list[list[dict]] = [[]]
+    for beat in beats:
+        if beat["eof"]:
+            frames.append([])
+        else:
+            frames[-1].append(beat)
+    return frames

@@ -108,7 +108,7 @@ ORB_GENERICS = {"MAX_WIDTH": 128, "MAX_HEIGHT": 96, "MAX_PER_CELL": 15, "DESCRIP
 @pytest.mark.parametrize(
     ("generics", "frames"),
     [
-        pytest.param({}, "noise,narrow", id="cell16"),
+        pytest.param({}, "noise,narrow", id="cell16", marks=pytest.mark.slow),
         pytest.param({}, "photo,flat,noise", id="photo", marks=pytest.mark.slow),
         pytest.param(
             {"ORB_MAX_CELL": 32, "NMS": "none", "SCORE": "sad"},
@@ -127,4 +127,17 @@ def test_core_orb(request, generics, frames):
         {**ORB_GENERICS, **generics},
         name=request.node.nodeid,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2", "TB_FRAMES": frames},
+    )
+
+
+def test_core_orb_bad_input(request):
+    """DESCRIPTOR "orb": a frame cut short and a reset while keypoints are in ORB, each
+    followed by an exact frame; noise at t = 0 with K = 15 (the input held)."""
+    run_cocotb(
+        "fastnms_core",
+        "core_orb_tb",
+        ORB_GENERICS,
+        testcase="bad_input_then_exact",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
     )
