@@ -868,7 +868,8 @@ def bench_section(bench: dict) -> str:
         "`fastnms.golden.model.detect` (a difference stops the bench). Simulated pixels/s: "
         "the fast engine's wall-clock speed on the frames, one simulation at a time. Build: "
         "GHDL synthesis, Verilator and g++ for the configuration, "
-        f"{m.get('parallel_builds')} builds at a time on {m.get('cores')} cores "
+        f"{m.get('parallel_builds')} build{'' if m.get('parallel_builds') == 1 else 's'} "
+        f"at a time on {m.get('cores')} cores "
         f"({m.get('cpu')}; load average {m.get('load_before', '?')} before the run); "
         "cached: built by an earlier run from the same sources and tools."
     )
