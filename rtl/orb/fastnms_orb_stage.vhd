@@ -76,7 +76,8 @@ architecture rtl of fastnms_orb_stage is
   constant RECORD_BITS : positive := X_BITS + Y_BITS + SCORE_BITS;
   -- A cell row's records at most: ceil(MAX_WIDTH / 16) cells of MAX_PER_CELL.
   constant ROW_RECORDS : positive := (MAX_WIDTH + 15) / 16 * MAX_PER_CELL;
-  constant QUEUE_DEPTH : positive := maximum(16, ROW_RECORDS);
+  -- (fastnms_fifo takes DEPTH - 2 words at least.)
+  constant QUEUE_DEPTH : positive := maximum(16, ROW_RECORDS + 2);
   -- Records in the queue and the feed: the queue's words, the feed's two
   -- queues of 16 and what its engine holds.
   constant MAX_PENDING : positive := 2 ** clog2(QUEUE_DEPTH) + 256;
