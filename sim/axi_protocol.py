@@ -8,9 +8,10 @@ Checked at every rising edge of aclk, on the values settled after the edge:
 - out of reset, on every channel (inputs and outputs): VALID is 0 or 1, never X/U/Z; while
   VALID is 1 the payload has no X/U/Z bit; once VALID is 1 without READY, VALID stays 1
   and the payload stays unchanged until the handshake;
-- the corner records: TKEEP all ones, TLAST equal to the record's LAST bit, the flags
-  EMPTY/ABORTED/OVERFLOW only on a LAST record, EMPTY with x = y = score = 0, the reserved
-  bits 0;
+- the corner records: TKEEP all ones, TLAST equal to the record's LAST bit on its final
+  beat and 0 on the others, the flags EMPTY/ABORTED/OVERFLOW only on a LAST record, EMPTY
+  with x = y = score = 0 and never with ORB, the reserved bits 0; a record with ORB is
+  REC_ORB_BEATS beats (record format 2), bits 63:32 of its angle beat 0;
 - AXI4-Lite: no B response without a write address and data taken before it, no R response
   without a read address taken before it.
 
@@ -36,9 +37,11 @@ RESERVED = (
         | regs.REC_LAST.mask
         | regs.REC_ABORTED.mask
         | regs.REC_OVERFLOW.mask
+        | regs.REC_ORB.mask
     )
     & (1 << 64) - 1
 )
+ANGLE_RESERVED = ~regs.REC_ANGLE.mask & (1 << 64) - 1
 
 
 @dataclass
@@ -125,6 +128,8 @@ class AxiProtocolChecker:
         self.reset_edges = 0  # edges with aresetn sampled low
         self.writes_pending = [0, 0]  # AW and W handshakes not answered yet
         self.reads_pending = 0
+        self.payload_left = 0  # beats of the ORB record in progress still to come
+        self.payload_last = False  # that record is its frame's last
 
     def start(self) -> None:
         cocotb.start_soon(self._run())
@@ -150,6 +155,7 @@ class AxiProtocolChecker:
                         self._fail(f"{ch.name} VALID is {_value(ch.valid)} during reset")
                 self.writes_pending = [0, 0]
                 self.reads_pending = 0
+                self.payload_left = 0
                 continue
             if in_reset:
                 in_reset = False
@@ -182,7 +188,7 @@ class AxiProtocolChecker:
         ready = ch.ready is None or _value(ch.ready) == "1"
         ch.held = None if ready else payload
         if ch.name == "m_axis_corners":
-            self._check_record(payload)
+            self._check_record(payload, ready)
         if ready:
             self._count(ch.name)
 
@@ -202,14 +208,29 @@ class AxiProtocolChecker:
                 self._fail("a read response without a read address before it")
             self.reads_pending -= 1
 
-    def _check_record(self, payload: tuple[str, ...]) -> None:
+    def _check_record(self, payload: tuple[str, ...], taken: bool) -> None:
         data, keep, last = payload
         word = int(data, 2)
         if keep != "1" * len(keep):
             self._fail(f"m_axis_corners TKEEP = {keep}")
+        if self.payload_left:
+            beat = regs.REC_ORB_BEATS - self.payload_left
+            final = self.payload_left == 1
+            if int(last) != int(final and self.payload_last):
+                self._fail(f"TLAST {last} on beat {beat} of an ORB record")
+            if beat == regs.REC_ANGLE_BEAT and word & ANGLE_RESERVED:
+                self._fail(f"angle beat 0x{word:016x}: bits 63:32 set")
+            if taken:
+                self.payload_left -= 1
+            return
         flag_last = regs.REC_LAST.get(word)
-        if flag_last != int(last):
-            self._fail(f"TLAST {last} but the record's LAST bit is {flag_last}")
+        orb = regs.REC_ORB.get(word)
+        if int(last) != (flag_last and not orb):
+            self._fail(f"TLAST {last} on a record with LAST {flag_last}, ORB {orb}")
+        if orb and regs.REC_EMPTY.get(word):
+            self._fail(f"record 0x{word:016x}: EMPTY with ORB")
+        if orb and taken:
+            self.payload_left, self.payload_last = regs.REC_ORB_BEATS - 1, bool(flag_last)
         flags = regs.REC_EMPTY.mask | regs.REC_ABORTED.mask | regs.REC_OVERFLOW.mask
         if word & flags and not flag_last:
             self._fail(f"record 0x{word:016x}: EMPTY/ABORTED/OVERFLOW without LAST")

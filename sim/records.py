@@ -7,7 +7,14 @@ closed the frame with). EMPTY is the only record of a frame without corners, wit
 LAST and x = y = score = 0; with CTRL.LIVE = 1, records of earlier frames whose LAST
 record was dropped may precede it, and the LAST record then carries OVERFLOW. A
 record that breaks these rules marks its frame `malformed` (decoding goes on; the
-next LAST ends the frame). Bits above OVERFLOW are reserved and ignored.
+next LAST ends the frame). Bits above ORB are reserved and ignored.
+
+Record format 2 (a build with DESCRIPTOR = "orb"): a record whose first word has ORB
+set is REC_ORB_BEATS words, the angle (float32 bits, beat 1) and the 32 descriptor
+bytes (beats 2 .. 5) after it; the frame's LAST record ends with its last word. A
+frame whose first record has ORB (`orb`) has `angle_bits` and `descriptors`, one entry
+per corner (0 and zero bytes for a corner without a complete payload). ORB with EMPTY,
+or a frame mixing records with and without ORB, is malformed.
 
     frames = decode_records(words)          # all at once
     decoder = RecordDecoder()               # or buffer by buffer
@@ -33,18 +40,29 @@ class Frame:
     index: int  # frames delivered by the decoder before this one
     first_word: int  # position of the frame's first record in the whole stream
     corners: list[Corner] = field(default_factory=list)  # (x, y, score), in output order
-    records: int = 0  # record words of the frame, the EMPTY record included
+    records: int = 0  # records of the frame, the EMPTY record included
+    words: int = 0  # 64-bit words of the frame (= records unless ORB)
+    angle_bits: list[int] = field(default_factory=list)  # ORB: float32 bits per corner
+    descriptors: list[bytes] = field(default_factory=list)  # ORB: 32 bytes per corner
     empty: bool = False  # ended by the EMPTY record
     aborted: bool = False  # a soft reset cut the frame
     overflow: bool = False  # records of this frame, or whole frames before it, were dropped
     malformed: bool = False  # a record broke the format
     complete: bool = True  # False: the stream ended before the frame's LAST record
+    orb: bool = False  # its first record has ORB (record format 2)
 
     @property
     def flags(self) -> list[str]:
         """The names of the flags that are set, in the order of the C decoder's bits."""
-        names = ("empty", "aborted", "overflow", "incomplete", "malformed")
-        values = (self.empty, self.aborted, self.overflow, not self.complete, self.malformed)
+        names = ("empty", "aborted", "overflow", "incomplete", "malformed", "orb")
+        values = (
+            self.empty,
+            self.aborted,
+            self.overflow,
+            not self.complete,
+            self.malformed,
+            self.orb,
+        )
         return [n for n, v in zip(names, values, strict=True) if v]
 
 
@@ -55,6 +73,10 @@ class RecordDecoder:
         self.position = 0  # words fed so far
         self.frames = 0  # frames delivered so far
         self._frame: Frame | None = None  # the frame in progress
+        self._payload: list[int] = []  # the ORB words of the record in progress
+        self._payload_left = 0  # ORB words still to come for it
+        self._payload_last = False  # that record is its frame's last
+        self._payload_keep = False  # that record is a corner (not EMPTY)
 
     @property
     def pending(self) -> int:
@@ -81,7 +103,15 @@ class RecordDecoder:
             self._frame = Frame(index=self.frames, first_word=self.position)
         frame = self._frame
         self.position += 1
+        frame.words += 1
+        if self._payload_left:
+            return self._take_payload(frame, word)
         frame.records += 1
+        orb = bool(regs.REC_ORB.get(word))
+        if frame.records == 1:
+            frame.orb = orb
+        elif orb != frame.orb:
+            frame.malformed = True  # records with and without ORB
         empty, last = bool(regs.REC_EMPTY.get(word)), bool(regs.REC_LAST.get(word))
         aborted, overflow = bool(regs.REC_ABORTED.get(word)), bool(regs.REC_OVERFLOW.get(word))
         if empty:
@@ -92,17 +122,40 @@ class RecordDecoder:
             frame.corners.append(
                 (regs.REC_X.get(word), regs.REC_Y.get(word), regs.REC_SCORE.get(word))
             )
+            if frame.orb:  # until its payload is complete
+                frame.angle_bits.append(0)
+                frame.descriptors.append(bytes(32))
         frame.aborted |= aborted
         frame.overflow |= overflow
         if (aborted or overflow) and not last:
             frame.malformed = True
+        if orb:
+            if empty:
+                frame.malformed = True
+            self._payload, self._payload_left = [], regs.REC_ORB_BEATS - 1
+            self._payload_last, self._payload_keep = last, not empty
+            return False
         return last
+
+    def _take_payload(self, frame: Frame, word: int) -> bool:
+        self._payload.append(word)
+        self._payload_left -= 1
+        if self._payload_left:
+            return False
+        angle = regs.REC_ANGLE.get(self._payload[regs.REC_ANGLE_BEAT - 1])
+        first = regs.REC_DESCRIPTOR_BEAT - 1
+        words = self._payload[first : first + regs.REC_DESCRIPTOR_BEATS]
+        if self._payload_keep and frame.orb:
+            frame.angle_bits[-1] = angle
+            frame.descriptors[-1] = b"".join(w.to_bytes(8, "little") for w in words)
+        return self._payload_last
 
     def _deliver(self, complete: bool) -> Frame:
         frame = self._frame
         assert frame is not None
         frame.complete = complete
         self._frame = None
+        self._payload_left = 0
         self.frames += 1
         return frame
 

@@ -34,7 +34,7 @@ class Register(NamedTuple):
 
 ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 4, 0)
+MAP_VERSION = (0, 5, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,7 +44,7 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 4)
+VERSION_MINOR = Field(8, 8, "ro", 5)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
 # CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
@@ -86,6 +86,8 @@ MODE_SCORE_VALUES = {"opencv": 0, "sad": 1}
 MODE_NMS = Field(4, 4, "rw", "NMS")
 MODE_NMS_VALUES = {"none": 0, "3x3": 1, "region4": 2, "region8": 3}
 MODE_PPC = Field(8, 4, "ro", "PPC")
+MODE_DESCRIPTOR = Field(12, 4, "ro", "DESCRIPTOR")
+MODE_DESCRIPTOR_VALUES = {"none": 0, "orb": 1}
 
 # CORNER_COUNT: Corner records of the last completed frame (0 for a frame without corners).
 CORNER_COUNT = 0x20
@@ -131,7 +133,9 @@ BUDGET = 0x3C
 BUDGET_PER_CELL = Field(0, 4, "rw", 0)
 BUDGET_CELL = Field(16, 9, "rw", 0x10)
 
-# The corner record: tdata of m_axis_corners, 64 bits.
+# The corner record: tdata of m_axis_corners, 64 bits per beat; with the ORB payload
+# (record format 2) REC_ORB_BEATS beats. _BEAT: the beat that holds a field.
+REC_ORB_BEATS = 6
 REC_X = Field(0, 16, "ro", 0)
 REC_Y = Field(16, 16, "ro", 0)
 REC_SCORE = Field(32, 16, "ro", 0)
@@ -139,6 +143,12 @@ REC_EMPTY = Field(48, 1, "ro", 0)
 REC_LAST = Field(49, 1, "ro", 0)
 REC_ABORTED = Field(50, 1, "ro", 0)
 REC_OVERFLOW = Field(51, 1, "ro", 0)
+REC_ORB = Field(52, 1, "ro", 0)
+REC_ANGLE = Field(0, 32, "ro", 0)
+REC_ANGLE_BEAT = 1
+REC_DESCRIPTOR = Field(0, 64, "ro", 0)
+REC_DESCRIPTOR_BEAT = 2
+REC_DESCRIPTOR_BEATS = 4
 
 REGISTERS: dict[str, Register] = {
     "ID": Register(ID, {"MAGIC": ID_MAGIC}),
@@ -173,7 +183,15 @@ REGISTERS: dict[str, Register] = {
     "THRESHOLD": Register(THRESHOLD, {"VALUE": THRESHOLD_VALUE}),
     "WIDTH": Register(WIDTH, {"VALUE": WIDTH_VALUE}),
     "HEIGHT": Register(HEIGHT, {"VALUE": HEIGHT_VALUE}),
-    "MODE": Register(MODE, {"SCORE": MODE_SCORE, "NMS": MODE_NMS, "PPC": MODE_PPC}),
+    "MODE": Register(
+        MODE,
+        {
+            "SCORE": MODE_SCORE,
+            "NMS": MODE_NMS,
+            "PPC": MODE_PPC,
+            "DESCRIPTOR": MODE_DESCRIPTOR,
+        },
+    ),
     "CORNER_COUNT": Register(CORNER_COUNT, {"VALUE": CORNER_COUNT_VALUE}),
     "FRAME_COUNT": Register(FRAME_COUNT, {"VALUE": FRAME_COUNT_VALUE}),
     "MAX_SIZE": Register(MAX_SIZE, {"WIDTH": MAX_SIZE_WIDTH, "HEIGHT": MAX_SIZE_HEIGHT}),

@@ -22,10 +22,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import cv2
 import numpy as np
+from fastnms.golden.orb import PATCH_SIZE
 
 from . import regs, verilator
 from .ghdl import BUILD, build_and_run
+from .records import decode_records
 from .sources import RTL
 from .timing import Timing
 
@@ -36,6 +39,9 @@ MAX_WIDTH, MAX_HEIGHT = BUILD_SIZES[0]  # the default build
 LARGEST_WIDTH, LARGEST_HEIGHT = BUILD_SIZES[-1]
 MIN_SIZE = 7
 ENGINES = ("verilator", "cocotb")
+# The largest ORB cell of the command line's ORB builds (their ORB_MAX_CELL): ORB-SLAM's
+# cells are about 30 pixels; each doubling doubles the rows the core keeps.
+ORB_MAX_CELL = 32
 # The STATUS bits that flag malformed video.
 MALFORMED = ("EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY")
 
@@ -59,6 +65,10 @@ class FrameResult:
     first_pixel: int
     last_pixel: int
     last_record: int
+    # With ORB (record format 2), per record in `records`' order: the angle's float32
+    # bits and the 32 descriptor bytes; empty otherwise.
+    angle_bits: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
+    descriptors: np.ndarray = field(default_factory=lambda: np.zeros((0, 32), np.uint8))
 
 
 @dataclass
@@ -94,17 +104,21 @@ def check_size(
     return None
 
 
-def decode_words(words: np.ndarray) -> np.ndarray:
-    """The corners (x, y, score) of one frame's record words: none for the single
-    EMPTY record of a frame without corners. Sorted by y then x."""
-    words = np.asarray(words, dtype=np.uint64)
-
-    def get(f: regs.Field) -> np.ndarray:
-        return ((words >> np.uint64(f.lsb)) & np.uint64((1 << f.width) - 1)).astype(np.int64)
-
-    empty = get(regs.REC_EMPTY).astype(bool)
-    recs = np.stack([get(regs.REC_X), get(regs.REC_Y), get(regs.REC_SCORE)], axis=1)[~empty]
-    return recs[np.lexsort((recs[:, 0], recs[:, 1]))].reshape(-1, 3)
+def decode_frame(words: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One frame's record words (either record format) as (records (N, 3) int64, angle
+    bits (N,) uint32, descriptors (N, 32) uint8), sorted by y then x; the last two are
+    empty without ORB."""
+    frames = decode_records(int(w) for w in np.asarray(words, dtype=np.uint64))
+    if len(frames) != 1 or not frames[0].complete or frames[0].malformed:
+        raise SimError(f"a frame's records do not decode as one frame: {len(frames)} frames")
+    frame = frames[0]
+    recs = np.array(frame.corners, dtype=np.int64).reshape(-1, 3)
+    order = np.lexsort((recs[:, 0], recs[:, 1]))
+    angles = np.array(frame.angle_bits, dtype=np.uint32)
+    descriptors = np.frombuffer(b"".join(frame.descriptors), np.uint8).reshape(-1, 32)
+    if frame.orb:
+        return recs[order], angles[order], descriptors[order]
+    return recs[order], angles[:0], descriptors[:0]
 
 
 def build_size(shapes: Sequence[tuple[int, int]]) -> tuple[int, int]:
@@ -121,10 +135,11 @@ def generics_for(
     ppc: int = 1,
     size: tuple[int, int] = (MAX_WIDTH, MAX_HEIGHT),
     budget: bool = False,
+    orb: bool = False,
 ) -> dict[str, object]:
-    """The top's generics for the CLI's builds (PPC only when above 1 and
-    MAX_PER_CELL = 15 only with `budget`, so that the other builds keep their
-    names)."""
+    """The top's generics for the CLI's builds (PPC only when above 1,
+    MAX_PER_CELL = 15 only with `budget` or `orb`, DESCRIPTOR and ORB_MAX_CELL only
+    with `orb`, so that the other builds keep their names)."""
     generics: dict[str, object] = {
         "MAX_WIDTH": size[0],
         "MAX_HEIGHT": size[1],
@@ -133,8 +148,11 @@ def generics_for(
     }
     if ppc != 1:
         generics["PPC"] = ppc
-    if budget:
+    if budget or orb:
         generics["MAX_PER_CELL"] = 15
+    if orb:
+        generics["DESCRIPTOR"] = "orb"
+        generics["ORB_MAX_CELL"] = ORB_MAX_CELL
     return generics
 
 
@@ -174,21 +192,26 @@ def run_rtl(
 
 
 def _frame_results(frames, raw_frames) -> list[FrameResult]:
-    return [
-        FrameResult(
-            width=img.shape[1],
-            height=img.shape[0],
-            threshold=threshold,
-            records=decode_words(raw.words),
-            words=raw.words,
-            cycles=raw.last_record - raw.first_pixel + 1,
-            input_stalls=raw.input_stalls,
-            first_pixel=raw.first_pixel,
-            last_pixel=raw.last_pixel,
-            last_record=raw.last_record,
+    results = []
+    for (img, threshold), raw in zip(frames, raw_frames, strict=True):
+        records, angle_bits, descriptors = decode_frame(raw.words)
+        results.append(
+            FrameResult(
+                width=img.shape[1],
+                height=img.shape[0],
+                threshold=threshold,
+                records=records,
+                words=raw.words,
+                cycles=raw.last_record - raw.first_pixel + 1,
+                input_stalls=raw.input_stalls,
+                first_pixel=raw.first_pixel,
+                last_pixel=raw.last_pixel,
+                last_record=raw.last_record,
+                angle_bits=angle_bits,
+                descriptors=descriptors,
+            )
         )
-        for (img, threshold), raw in zip(frames, raw_frames, strict=True)
-    ]
+    return results
 
 
 def _run_verilator(
@@ -298,3 +321,48 @@ def _run_cocotb(frames, generics, timing, progress, budget) -> SimResult:
         wall_seconds=wall,
         engine="cocotb",
     )
+
+
+def detect_and_compute(
+    img: np.ndarray,
+    threshold: int = 20,
+    score: str = "opencv",
+    nms: str = "3x3",
+    cell: int = 16,
+    per_cell: int = 4,
+    *,
+    engine: str = "verilator",
+    announce: Callable[[str], None] | None = None,
+) -> tuple[tuple[cv2.KeyPoint, ...], np.ndarray]:
+    """The RTL's ORB keypoints and descriptors on one image (fastnms_axi with DESCRIPTOR
+    "orb", simulated), in the types fastnms.golden.orb.detect_and_compute gives: a tuple
+    of cv2.KeyPoint (pt, response = score, angle, size 31, octave 0) and an (N, 32) uint8
+    array, sorted by y then x; at most per_cell keypoints per cell x cell square. The
+    hardware needs the budget (per_cell 1..15; with 0 it may drop keypoints) and a cell
+    of 16 or ORB_MAX_CELL; NMS "3x3" or "none"."""
+    if nms not in ("3x3", "none"):
+        raise SimError(f"ORB in the RTL takes NMS 3x3 or none, not {nms!r}")
+    if not 1 <= per_cell <= 15:
+        raise SimError(f"ORB in the RTL needs a budget: per_cell 1..15, got {per_cell}")
+    if cell not in (16, ORB_MAX_CELL):
+        raise SimError(f"ORB in the simulated RTL takes cells of 16 or {ORB_MAX_CELL}, got {cell}")
+    problem = check_size(img, 1, LARGEST_WIDTH, LARGEST_HEIGHT)
+    if problem:
+        raise SimError(problem)
+    generics = generics_for(score, nms, size=build_size([img.shape]), orb=True)
+    result = run_rtl(
+        [(img, threshold)],
+        score,
+        nms,
+        engine=engine,
+        generics=generics,
+        budget=(cell, per_cell),
+        announce=announce,
+    )
+    frame = result.frames[0]
+    angles = frame.angle_bits.view(np.float32).tolist()
+    keypoints = tuple(
+        cv2.KeyPoint(float(x), float(y), float(PATCH_SIZE), float(a), float(s), 0, -1)
+        for (x, y, s), a in zip(frame.records.tolist(), angles, strict=True)
+    )
+    return keypoints, frame.descriptors

@@ -174,7 +174,7 @@ def build(
                 log.flush()
                 if subprocess.run(cmd, stdout=out, stderr=log).returncode != 0:
                     raise EngineError(f"GHDL's synthesis failed; see {log.name}")
-            check_netlist(netlist.read_text())
+            netlist.write_text(fix_bit_strings(netlist.read_text()))
             cflags = f"{CXXFLAGS} -I{REGS_HEADER.parent}"
             cmd = ["verilator", *VERILATOR_FLAGS, "-j", str(os.cpu_count() or 1)]
             cmd += ["--top-module", TOP, "-CFLAGS", cflags, "--Mdir", str(where / "obj")]
@@ -189,20 +189,15 @@ def build(
 
 
 # GHDL 2.0 writes a constant vector of more than 32 bits as a Verilog string
-# ("0101..."), which Verilog reads as ASCII characters: the netlist then differs
-# from the RTL. The RTL keeps such constants out; this catches a new one.
-_WIDE_CONSTANT = re.compile(r'"[01]{33,}"')
+# ("0101..."), which Verilog reads as ASCII characters: the netlist would differ
+# from the RTL. The build rewrites each such string as the sized binary literal
+# it stands for (a synthesized netlist has no other strings).
+_BIT_STRING = re.compile(r'"([01]+)"')
 
 
-def check_netlist(verilog: str) -> None:
-    """Fail on a constant that GHDL's Verilog output cannot carry."""
-    found = _WIDE_CONSTANT.search(verilog)
-    if found:
-        line = verilog.count("\n", 0, found.start()) + 1
-        raise EngineError(
-            f"GHDL wrote a constant of {len(found.group()) - 2} bits as a string (netlist line "
-            f"{line}); build it from parts of at most 32 bits in the RTL"
-        )
+def fix_bit_strings(verilog: str) -> str:
+    """The netlist with every string of 0s and 1s written as a sized binary literal."""
+    return _BIT_STRING.sub(lambda m: f"{len(m.group(1))}'b{m.group(1)}", verilog)
 
 
 def run(

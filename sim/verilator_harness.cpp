@@ -227,8 +227,11 @@ int main(int argc, char** argv) {
 
   // The output rules of sim/axi_protocol.py that apply here (its other checks run
   // under the cocotb engine): a record offered stays offered, unchanged, until
-  // taken; TKEEP all ones; TLAST equal to the record's LAST bit; no score video.
+  // taken; TKEEP all ones; TLAST equal to the record's LAST bit on its final beat
+  // (an ORB record is FASTNMS_REC_ORB_BEATS beats) and 0 on the others; no score video.
   Seen before{};
+  unsigned payload_left = 0;  // beats of the ORB record in progress still to come
+  bool payload_last = false;  // that record is its frame's last
   auto check_outputs = [&](const Seen& s) {
     if (before.record_valid && !before.record) {
       if (!s.record_valid) fail("AXI protocol: m_axis_corners_tvalid fell before tready");
@@ -237,8 +240,17 @@ int main(int argc, char** argv) {
     }
     if (s.record_valid) {
       if (s.record_keep != 0xFF) fail("AXI protocol: m_axis_corners_tkeep not all ones");
-      if (((s.record_word >> FASTNMS_REC_LAST_SHIFT) & 1) != (s.record_last ? 1u : 0u))
-        fail("AXI protocol: m_axis_corners_tlast differs from the record's LAST bit");
+      const bool orb = ((s.record_word >> FASTNMS_REC_ORB_SHIFT) & 1) != 0;
+      const bool last = ((s.record_word >> FASTNMS_REC_LAST_SHIFT) & 1) != 0;
+      const bool want = payload_left ? payload_left == 1 && payload_last : last && !orb;
+      if (s.record_last != want)
+        fail("AXI protocol: m_axis_corners_tlast not on the frame's last beat");
+      if (s.record && payload_left) {
+        --payload_left;
+      } else if (s.record && orb) {
+        payload_left = FASTNMS_REC_ORB_BEATS - 1;
+        payload_last = last;
+      }
     }
     if (s.score_valid) fail("AXI protocol: m_axis_score_tvalid without SCORE_VIDEO");
     before = s;

@@ -40,6 +40,11 @@ static void start_frame(struct fastnms_decoder *dec)
 {
     dec->flags = 0;
     dec->records = 0;
+    dec->words = 0;
+    dec->frame_orb = false;
+    dec->payload = 0;
+    dec->payload_last = false;
+    dec->payload_slot = SIZE_MAX;
     dec->corners = 0;
     dec->stored = 0;
 }
@@ -50,6 +55,7 @@ int fastnms_decoder_init(struct fastnms_decoder *dec, struct fastnms_corner *sto
     if (dec == NULL || (storage == NULL && capacity != 0u))
         return FASTNMS_ERR_ARG;
     dec->storage = storage;
+    dec->orb_storage = NULL;
     dec->capacity = capacity;
     dec->index = 0;
     dec->position = 0;
@@ -58,20 +64,66 @@ int fastnms_decoder_init(struct fastnms_decoder *dec, struct fastnms_corner *sto
     return FASTNMS_OK;
 }
 
-/* Add one record to the frame in progress; true if it is the frame's last. */
+int fastnms_decoder_set_orb(struct fastnms_decoder *dec, struct fastnms_orb *orb_storage)
+{
+    if (dec == NULL)
+        return FASTNMS_ERR_ARG;
+    dec->orb_storage = orb_storage;
+    return FASTNMS_OK;
+}
+
+/* One payload word of an ORB record; true if it ends its frame. */
+static bool take_payload(struct fastnms_decoder *dec, uint64_t word)
+{
+    const unsigned beat = FASTNMS_REC_ORB_BEATS - dec->payload; /* 1 .. ORB_BEATS - 1 */
+
+    struct fastnms_orb *orb = &dec->payload_orb;
+
+    if (dec->payload_slot != SIZE_MAX && dec->orb_storage != NULL) {
+        if (beat == FASTNMS_REC_ANGLE_BEAT) {
+            orb->angle_bits = (uint32_t)FIELD(word, REC_ANGLE);
+        } else if (beat >= FASTNMS_REC_DESCRIPTOR_BEAT &&
+                   beat < FASTNMS_REC_DESCRIPTOR_BEAT + FASTNMS_REC_DESCRIPTOR_BEATS) {
+            unsigned i;
+            for (i = 0; i < 8u; i++)
+                orb->descriptor[8u * (beat - FASTNMS_REC_DESCRIPTOR_BEAT) + i] =
+                    (uint8_t)(word >> (8u * i));
+        }
+    }
+    dec->payload--;
+    if (dec->payload != 0u)
+        return false;
+    if (dec->payload_slot != SIZE_MAX && dec->orb_storage != NULL && dec->frame_orb)
+        dec->orb_storage[dec->payload_slot] = *orb;
+    return dec->payload_last;
+}
+
+/* Add one word to the frame in progress; true if it is the frame's last. */
 static bool take_record(struct fastnms_decoder *dec, uint64_t word)
 {
     const bool empty = (word & FASTNMS_REC_EMPTY_MASK) != 0u;
     const bool last = (word & FASTNMS_REC_LAST_MASK) != 0u;
     const bool aborted = (word & FASTNMS_REC_ABORTED_MASK) != 0u;
     const bool overflow = (word & FASTNMS_REC_OVERFLOW_MASK) != 0u;
+    const bool orb = (word & FASTNMS_REC_ORB_MASK) != 0u;
     const uint64_t fields = FASTNMS_REC_X_MASK | FASTNMS_REC_Y_MASK | FASTNMS_REC_SCORE_MASK;
 
-    if (dec->records == 0u)
+    if (dec->words == 0u)
         dec->first_word = dec->position;
-    dec->records = saturating_increment(dec->records);
+    dec->words = saturating_increment(dec->words);
     if (dec->position != UINT64_MAX)
         dec->position++;
+    if (dec->payload != 0u)
+        return take_payload(dec, word);
+
+    dec->records = saturating_increment(dec->records);
+    if (dec->records == 1u) {
+        dec->frame_orb = orb;
+        if (orb)
+            dec->flags |= FASTNMS_FRAME_ORB;
+    } else if (orb != dec->frame_orb)
+        dec->flags |= FASTNMS_FRAME_MALFORMED; /* records with and without ORB */
+    dec->payload_slot = SIZE_MAX;
 
     if (empty) {
         /* The only record of its frame, with LAST, all fields 0; records of
@@ -86,6 +138,11 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
             c->x = (uint16_t)FIELD(word, REC_X);
             c->y = (uint16_t)FIELD(word, REC_Y);
             c->score = (uint16_t)FIELD(word, REC_SCORE);
+            dec->payload_slot = dec->stored;
+            if (dec->frame_orb && dec->orb_storage != NULL) {
+                const struct fastnms_orb zero = {0};
+                dec->orb_storage[dec->stored] = zero; /* until its payload is complete */
+            }
             dec->stored++;
         } else {
             dec->flags |= FASTNMS_FRAME_TRUNCATED;
@@ -97,6 +154,17 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
         dec->flags |= FASTNMS_FRAME_OVERFLOW;
     if ((aborted || overflow) && !last)
         dec->flags |= FASTNMS_FRAME_MALFORMED;
+    if (orb) {
+        if (empty)
+            dec->flags |= FASTNMS_FRAME_MALFORMED;
+        dec->payload = FASTNMS_REC_ORB_BEATS - 1u;
+        dec->payload_last = last;
+        if (dec->payload_slot != SIZE_MAX && dec->orb_storage != NULL) {
+            const struct fastnms_orb zero = {0};
+            dec->payload_orb = zero;
+        }
+        return false;
+    }
     return last;
 }
 
@@ -106,10 +174,12 @@ static void deliver(struct fastnms_decoder *dec, struct fastnms_frame *frame, ui
     frame->index = dec->index;
     frame->flags = dec->flags | flags;
     frame->records = dec->records;
+    frame->words = dec->words;
     frame->corners = dec->corners;
     frame->stored = dec->stored;
     frame->first_word = dec->first_word;
     frame->corner = dec->storage;
+    frame->orb = dec->orb_storage;
     dec->index++;
     start_frame(dec);
 }
@@ -136,7 +206,7 @@ int fastnms_decoder_flush(struct fastnms_decoder *dec, struct fastnms_frame *fra
 {
     if (dec == NULL || frame == NULL)
         return FASTNMS_ERR_ARG;
-    if (dec->records == 0u)
+    if (dec->words == 0u)
         return FASTNMS_OK;
     deliver(dec, frame, FASTNMS_FRAME_INCOMPLETE);
     return FASTNMS_FRAME;

@@ -2,7 +2,8 @@
  *
  * - The record decoder: turns the 64-bit corner records of m_axis_corners (as an
  *   AXI DMA writes them to memory) into frames of keypoints, fed one buffer at a
- *   time (a frame may span several buffers), or all at once.
+ *   time (a frame may span several buffers), or all at once; with ORB (record
+ *   format 2) each keypoint's angle and descriptor too.
  * - The register helpers: probe, frame set-up, live mode, soft reset, status and
  *   counters, through a register accessor the caller supplies (memory-mapped
  *   I/O, Linux UIO, a simulator, a test double).
@@ -49,6 +50,12 @@ struct fastnms_corner {
     uint16_t score; /* 8 bits (opencv) or 12 bits (sad) */
 };
 
+/* A keypoint's ORB payload (record format 2, a build with DESCRIPTOR = "orb"). */
+struct fastnms_orb {
+    uint32_t angle_bits;    /* the angle in degrees, IEEE-754 float32 bits (cv2 KeyPoint.angle) */
+    uint8_t descriptor[32]; /* the descriptor, cv2.ORB's 32 bytes in order */
+};
+
 /* fastnms_frame.flags */
 #define FASTNMS_FRAME_EMPTY      0x01u /* ended by the EMPTY record: the frame had no corner */
 #define FASTNMS_FRAME_ABORTED    0x02u /* a soft reset cut the frame: its corners are incomplete */
@@ -57,26 +64,37 @@ struct fastnms_corner {
 #define FASTNMS_FRAME_INCOMPLETE 0x08u /* no LAST record yet (fastnms_decoder_flush) */
 #define FASTNMS_FRAME_TRUNCATED  0x10u /* more corners than the storage held: `stored` < `corners` */
 #define FASTNMS_FRAME_MALFORMED  0x20u /* a record broke the format (see sw/README.md) */
+#define FASTNMS_FRAME_ORB        0x40u /* the frame's records carry ORB payloads (format 2) */
 
 struct fastnms_frame {
     uint32_t index;       /* frames delivered by this decoder before this one */
     uint32_t flags;       /* FASTNMS_FRAME_* */
-    size_t records;       /* record words of the frame, the EMPTY record included */
+    size_t records;       /* records of the frame, the EMPTY record included */
+    size_t words;         /* 64-bit words of the frame (= records without ORB) */
     size_t corners;       /* corners of the frame (its records that are not EMPTY) */
     size_t stored;        /* of them, in `corner` (= corners unless TRUNCATED) */
     uint64_t first_word;  /* position of the frame's first record in the whole stream */
     const struct fastnms_corner *corner; /* the stored corners, in output order; valid
                                             until the next call on the decoder */
+    const struct fastnms_orb *orb; /* with ORB storage (fastnms_decoder_set_orb) and
+                                      FASTNMS_FRAME_ORB: orb[i] belongs to corner[i] */
 };
 
 /* The decoder's state: allocate it anywhere, set it up with fastnms_decoder_init;
  * its members are private. */
 struct fastnms_decoder {
     struct fastnms_corner *storage;
+    struct fastnms_orb *orb_storage;
     size_t capacity;
     uint32_t index;
     uint32_t flags;
     size_t records;
+    size_t words;
+    bool frame_orb;      /* the frame's first record has ORB */
+    uint8_t payload;     /* ORB words still to come for the record in progress */
+    bool payload_last;   /* that record is its frame's last */
+    size_t payload_slot; /* its storage index, or SIZE_MAX when not stored */
+    struct fastnms_orb payload_orb; /* its payload so far */
     size_t corners;
     size_t stored;
     uint64_t position;   /* words consumed since init */
@@ -87,6 +105,15 @@ struct fastnms_decoder {
  * (storage may be NULL when capacity is 0: the corners are then only counted). */
 int fastnms_decoder_init(struct fastnms_decoder *dec, struct fastnms_corner *storage,
                          size_t capacity);
+
+/* Record format 2: keep the ORB payload of stored corner i in orb_storage[i] (room
+ * for the `capacity` given to fastnms_decoder_init; NULL: not kept). Without it the
+ * decoder still reads ORB records (the ORB bit of a record's first word says that
+ * REC_ORB_BEATS - 1 payload words follow), it only skips their payload. In a frame
+ * whose first record has ORB (FASTNMS_FRAME_ORB) every stored corner has an entry;
+ * a corner without a complete payload (a malformed frame, or one cut off by the end
+ * of the stream) has zeros. */
+int fastnms_decoder_set_orb(struct fastnms_decoder *dec, struct fastnms_orb *orb_storage);
 
 /* Decode words[0 .. count-1], stopping after the first frame that ends there.
  * Returns FASTNMS_FRAME: *frame is the frame, *consumed the words used (the

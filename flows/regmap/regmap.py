@@ -43,6 +43,8 @@ class Field:
     reset: int | str  # a number, or the name of a generic
     description: str
     values: dict[str, int] = field(default_factory=dict)
+    beat: int = 0  # record fields: the beat of the record that holds the field
+    beats: int = 1  # record fields: how many beats from `beat` on hold it (bits repeated)
 
     @property
     def width(self) -> int:
@@ -74,6 +76,7 @@ class RegMap:
     registers: tuple[Register, ...]
     record: tuple[Field, ...]  # the corner record (tdata of m_axis_corners)
     record_width: int
+    orb_beats: int  # beats of a record with the ORB payload (record format 2)
 
 
 def _ident(text: str) -> str:
@@ -105,12 +108,16 @@ def load(path: Path = ROOT / SOURCE) -> RegMap:
         registers.append(Register(reg["name"], reg["offset"], reg["description"], tuple(fields)))
     rec = data["record"]
     record = []
-    used = 0
+    used: dict[int, int] = {}  # bits used, per beat
     for f in rec["fields"]:
         msb, lsb = f["bits"]
-        fld = Field(f["name"], msb, lsb, "ro", 0, f["description"])
-        assert 0 <= lsb <= msb < rec["width"] and not used & fld.mask, f"record.{fld.name}"
-        used |= fld.mask
+        beat, beats = f.get("beat", 0), f.get("beats", 1)
+        fld = Field(f["name"], msb, lsb, "ro", 0, f["description"], {}, beat, beats)
+        assert 0 <= lsb <= msb < rec["width"], f"record.{fld.name}: bits"
+        assert beat >= 0 and beat + beats <= rec["orb_beats"], f"record.{fld.name}: beats"
+        for b in range(beat, beat + beats):
+            assert not used.get(b, 0) & fld.mask, f"record.{fld.name} overlaps another field"
+            used[b] = used.get(b, 0) | fld.mask
         record.append(fld)
     offsets = [r.offset for r in registers]
     assert len(set(offsets)) == len(offsets), "two registers at one offset"
@@ -123,6 +130,7 @@ def load(path: Path = ROOT / SOURCE) -> RegMap:
         tuple(registers),
         tuple(record),
         int(rec["width"]),
+        int(rec["orb_beats"]),
     )
 
 
@@ -204,14 +212,22 @@ def vhdl(regmap: RegMap) -> str:
                 rows.append((f"{base}_{_ident(value)}", "natural", str(code)))
         lines += ["", *_comment(f"{reg.name}: {reg.description}", "  -- ")]
         lines += _vhdl_block(rows)
-    rows = [("REC_WIDTH", "positive", str(regmap.record_width))]
+    rows = [
+        ("REC_WIDTH", "positive", str(regmap.record_width)),
+        ("REC_ORB_BEATS", "positive", str(regmap.orb_beats)),
+    ]
     for fld in regmap.record:
         if fld.width == 1:
             rows.append((f"REC_{fld.name}", "natural", str(fld.lsb)))
         else:
             rows.append((f"REC_{fld.name}_LSB", "natural", str(fld.lsb)))
             rows.append((f"REC_{fld.name}_WIDTH", "positive", str(fld.width)))
-    lines += ["", "  -- The corner record (tdata of m_axis_corners)."]
+        rows += [(f"REC_{fld.name}_{k}", "natural", str(v)) for k, v in _beat_rows(fld)]
+    lines += [
+        "",
+        "  -- The corner record (tdata of m_axis_corners): beat 0, and with the ORB payload",
+        "  -- (record format 2) REC_ORB_BEATS beats; _BEAT: the beat that holds a field.",
+    ]
     lines += _vhdl_block(rows)
     lines += ["", f"end package {regmap.name}_regs_pkg;", ""]
     return "\n".join(lines)
@@ -250,11 +266,16 @@ def c_header(regmap: RegMap) -> str:
                 defs.append((f"{base}_{_ident(value)}", f"{code}u"))
         width = max(len(n) for n, _ in defs)
         lines += [f"#define {n.ljust(width)} {v}" for n, v in defs]
-    lines += ["", "/* The corner record: tdata of m_axis_corners, 64 bits. */"]
-    defs = []
+    lines += [
+        "",
+        "/* The corner record: tdata of m_axis_corners, 64 bits per beat; with the ORB",
+        " * payload (record format 2) _ORB_BEATS beats. _BEAT: the beat that holds a field. */",
+    ]
+    defs = [(f"{prefix}_REC_ORB_BEATS", f"{regmap.orb_beats}u")]
     for fld in regmap.record:
         defs.append((f"{prefix}_REC_{fld.name}_SHIFT", f"{fld.lsb}u"))
         defs.append((f"{prefix}_REC_{fld.name}_MASK", f"0x{fld.mask:016X}ull"))
+        defs += [(f"{prefix}_REC_{fld.name}_{k}", f"{v}u") for k, v in _beat_rows(fld)]
     width = max(len(n) for n, _ in defs)
     lines += [f"#define {n.ljust(width)} {v}" for n, v in defs]
     lines += ["", f"#endif /* {guard} */", ""]
@@ -316,9 +337,15 @@ def python(regmap: RegMap) -> str:
             if fld.values:
                 items = ", ".join(f'"{k}": {v}' for k, v in fld.values.items())
                 lines.append(f"{reg.name}_{fld.name}_VALUES = {{{items}}}")
-    lines += ["", "# The corner record: tdata of m_axis_corners, 64 bits."]
+    lines += [
+        "",
+        "# The corner record: tdata of m_axis_corners, 64 bits per beat; with the ORB payload",
+        "# (record format 2) REC_ORB_BEATS beats. _BEAT: the beat that holds a field.",
+        f"REC_ORB_BEATS = {regmap.orb_beats}",
+    ]
     for fld in regmap.record:
         lines.append(f'REC_{fld.name} = Field({fld.lsb}, {fld.width}, "ro", 0)')
+        lines += [f"REC_{fld.name}_{k} = {v}" for k, v in _beat_rows(fld)]
     lines += ["", "REGISTERS: dict[str, Register] = {"]
     for reg in regmap.registers:
         fields = ", ".join(f'"{f.name}": {reg.name}_{f.name}' for f in reg.fields)
@@ -351,6 +378,14 @@ def python(regmap: RegMap) -> str:
     return "\n".join(lines)
 
 
+def _beat_rows(fld: Field) -> list[tuple[str, int]]:
+    """The beat constants of a record field after beat 0: its beat, and its beat count
+    when it spans several."""
+    if fld.beat == 0 and fld.beats == 1:
+        return []
+    return [("BEAT", fld.beat)] + ([("BEATS", fld.beats)] if fld.beats > 1 else [])
+
+
 def _py_reset(fld: Field) -> str:
     if isinstance(fld.reset, str):
         return f'"{fld.reset}"'
@@ -379,9 +414,10 @@ def markdown(regmap: RegMap) -> str:
 
 
 def record_markdown(regmap: RegMap) -> str:
-    lines = ["| bits | field | meaning |", "|---|---|---|"]
+    lines = ["| beat | bits | field | meaning |", "|---|---|---|---|"]
     for fld in regmap.record:
-        lines.append(f"| {fld.bits} | `{fld.name}` | {fld.description} |")
+        beat = str(fld.beat) if fld.beats == 1 else f"{fld.beat}-{fld.beat + fld.beats - 1}"
+        lines.append(f"| {beat} | {fld.bits} | `{fld.name}` | {fld.description} |")
     return "\n".join(lines) + "\n"
 
 

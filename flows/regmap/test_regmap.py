@@ -39,6 +39,7 @@ def test_reset_values_follow_the_generics():
         "SCORE_VIDEO": True,
         "PPC": 1,
         "MAX_PER_CELL": 0,
+        "DESCRIPTOR": "none",
     }
     assert regs.reset_value("ID", generics) == 0x46415354
     assert regs.reset_value("CTRL", generics) == 1
@@ -55,6 +56,8 @@ def test_reset_values_follow_the_generics():
     generics.update(MAX_PER_CELL=15)
     assert regs.reset_value("BUILD", generics) == 15 << 20 | 64
     assert regs.reset_value("BUDGET", generics) == 16 << 16  # CELL 16, PER_CELL 0
+    generics.update(PPC=1, DESCRIPTOR="orb")
+    assert regs.reset_value("MODE", generics) == 0x1110  # ORB, PPC 1
 
 
 def test_docs_table_lists_every_field():

@@ -15,6 +15,11 @@
 -- as UG934 does (pixel 0 of a beat in the low byte); PPC > 1 needs NMS "3x3"
 -- or "none".
 --
+-- DESCRIPTOR "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0): each
+-- keypoint's record carries its ORB angle and descriptor (record format 2:
+-- REC_ORB_BEATS beats, fastnms_record_beats); ORB_MAX_CELL is the largest
+-- BUDGET.CELL (it sizes the core's ORB rows).
+--
 -- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
 -- registered twice more before it resets the control state, but every VALID
 -- and READY of the top is low from the first clock edge at which aresetn is
@@ -38,7 +43,9 @@ entity fastnms_axi is
     SCORE_VIDEO       : boolean  := false;
     CORNER_FIFO_DEPTH : positive := 512;
     PPC               : positive := 1;
-    MAX_PER_CELL      : natural  := 0
+    MAX_PER_CELL      : natural  := 0;
+    DESCRIPTOR        : string   := "none";
+    ORB_MAX_CELL      : positive := 16
   );
   port (
     aclk    : in    std_logic;
@@ -192,10 +199,39 @@ architecture rtl of fastnms_axi is
   constant X_BITS     : positive := clog2(MAX_WIDTH);
   constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
   constant SCORE_BITS : positive := score_width(SCORE);
-  -- A record from the packer: kind (2 bits, see fastnms_corner_pack), x, y,
-  -- score; in the FIFO, the overflow flag above them.
-  constant PACKED_BITS : positive := 2 + X_BITS + Y_BITS + SCORE_BITS;
-  constant FIFO_BITS   : positive := PACKED_BITS + 1;
+  constant ORB        : boolean  := DESCRIPTOR = "orb";
+
+  -- ORB's payload: the angle (32 bits) and the descriptor (256).
+  function orb_bits return natural is
+  begin
+
+    if ORB then
+      return 288;
+    end if;
+
+    return 0;
+
+  end function orb_bits;
+
+  function record_beats return positive is
+  begin
+
+    if ORB then
+      return REC_ORB_BEATS;
+    end if;
+
+    return 1;
+
+  end function record_beats;
+
+  constant PAYLOAD_BITS : natural  := orb_bits;
+  constant EXTRA_BITS   : positive := maximum(1, PAYLOAD_BITS);
+  constant FIELD_BITS   : positive := X_BITS + Y_BITS + SCORE_BITS;
+  -- A record from the packer: kind (2 bits, see fastnms_corner_pack), lost,
+  -- x, y, score, extra; in the FIFO: overflow, kind, x, y, score, payload.
+  constant PACKED_BITS : positive := 3 + FIELD_BITS + EXTRA_BITS;
+  constant FIFO_BITS   : positive := 3 + FIELD_BITS + PAYLOAD_BITS;
+  constant BEATS       : positive := record_beats;
 
   -- Reset: the synchroniser chain, then the pipeline's reset (also held
   -- during a soft reset).
@@ -258,20 +294,29 @@ architecture rtl of fastnms_axi is
   signal k_y        : unsigned(Y_BITS - 1 downto 0);
   signal k_score    : unsigned(SCORE_BITS - 1 downto 0);
   signal k_eof      : std_logic;
+  signal k_angle    : std_logic_vector(31 downto 0);
+  signal k_desc     : std_logic_vector(255 downto 0);
+  signal k_extra    : std_logic_vector(EXTRA_BITS - 1 downto 0);
   signal open_frame : std_logic;
+  signal orb_drop   : std_logic; -- the core dropped a keypoint (ORB, K = 0)
+  signal orb_lost   : std_logic; -- ... in the frame the core is sending
+  signal drop_owed  : std_logic; -- a drop to count on the next clock
 
   -- Records: packed, then (LIVE: dropped if they do not fit) the FIFO.
   signal p_valid : std_logic;
   signal p_ready : std_logic;
   signal p_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
-  signal p_last  : std_logic; -- a frame's last record (LAST, EMPTY or ABORTED)
+  signal p_last  : std_logic;                     -- a frame's last record (LAST, EMPTY or ABORTED)
+  signal p_kind  : std_logic_vector(1 downto 0);
+  signal p_lost  : std_logic;
+  signal p_over  : std_logic;
   signal q_valid : std_logic;
   signal q_ready : std_logic;
   signal q_spare : std_logic;
   signal q_fits  : std_logic;
   signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
   signal drop    : std_logic;
-  signal lost    : std_logic; -- records dropped since the last LAST record stored
+  signal lost    : std_logic;                     -- records dropped since the last LAST record stored
   signal f_valid : std_logic;
   signal f_ready : std_logic;
   signal f_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
@@ -283,6 +328,9 @@ architecture rtl of fastnms_axi is
   signal f_score : std_logic_vector(SCORE_BITS - 1 downto 0);
   signal f_empty : std_logic;
   signal f_last  : std_logic;
+  signal f_word  : std_logic_vector(63 downto 0); -- beat 0
+  signal f_beats : std_logic_vector(BEATS * 64 - 1 downto 0);
+  signal b_valid : std_logic;
 
   -- Score tap.
   signal t_valid : std_logic;
@@ -326,6 +374,10 @@ begin
     severity failure;
   assert PPC = 1 or NMS = "3x3" or NMS = "none"
     report "fastnms_axi: only NMS ""3x3"" and ""none"" take 2 or 4 pixels per clock (PPC); the region NMS needs PPC 1"
+    severity failure;
+  assert DESCRIPTOR = "none" or
+         (DESCRIPTOR = "orb" and PPC = 1 and (NMS = "3x3" or NMS = "none") and MAX_PER_CELL > 0)
+    report "fastnms_axi: DESCRIPTOR must be ""none"" or ""orb""; ""orb"" needs PPC 1, NMS ""3x3"" or ""none"" and MAX_PER_CELL > 0"
     severity failure;
 
   -- ---- reset ---------------------------------------------------------------
@@ -422,7 +474,9 @@ begin
       SCORE_VIDEO       => SCORE_VIDEO,
       CORNER_FIFO_DEPTH => CORNER_FIFO_DEPTH,
       PPC               => PPC,
-      MAX_PER_CELL      => MAX_PER_CELL
+      MAX_PER_CELL      => MAX_PER_CELL,
+      DESCRIPTOR        => DESCRIPTOR,
+      ORB_MAX_CELL      => ORB_MAX_CELL
     )
     port map (
       clk             => aclk,
@@ -571,43 +625,76 @@ begin
       READ_LATENCY => 1,
       SCORE_TAP    => SCORE_VIDEO,
       PPC          => PPC,
-      MAX_PER_CELL => MAX_PER_CELL
+      MAX_PER_CELL => MAX_PER_CELL,
+      DESCRIPTOR   => DESCRIPTOR,
+      ORB_MAX_CELL => ORB_MAX_CELL
     )
     port map (
-      clk           => aclk,
-      rst           => pipe_rst,
-      cfg_width     => cfg_width,
-      cfg_height    => cfg_height,
-      cfg_threshold => cfg_threshold,
-      cfg_cell_log  => cfg_cell_log,
-      cfg_per_cell  => cfg_per_cell,
-      in_valid      => c_valid,
-      in_ready      => c_ready,
-      in_data       => c_data,
-      in_sof        => c_sof,
-      in_eol        => c_eol,
-      out_valid     => k_valid,
-      out_ready     => k_ready,
-      out_x         => k_x,
-      out_y         => k_y,
-      out_score     => k_score,
-      out_eof       => k_eof,
-      tap_valid     => t_valid,
-      tap_ready     => t_ready,
-      tap_score     => t_score,
-      tap_sof       => t_sof,
-      tap_eol       => t_eol,
-      err_line      => open,
-      err_frame     => open
+      clk            => aclk,
+      rst            => pipe_rst,
+      cfg_width      => cfg_width,
+      cfg_height     => cfg_height,
+      cfg_threshold  => cfg_threshold,
+      cfg_cell_log   => cfg_cell_log,
+      cfg_per_cell   => cfg_per_cell,
+      in_valid       => c_valid,
+      in_ready       => c_ready,
+      in_data        => c_data,
+      in_sof         => c_sof,
+      in_eol         => c_eol,
+      out_valid      => k_valid,
+      out_ready      => k_ready,
+      out_x          => k_x,
+      out_y          => k_y,
+      out_score      => k_score,
+      out_eof        => k_eof,
+      out_angle      => k_angle,
+      out_descriptor => k_desc,
+      orb_dropped    => orb_drop,
+      tap_valid      => t_valid,
+      tap_ready      => t_ready,
+      tap_score      => t_score,
+      tap_sof        => t_sof,
+      tap_eol        => t_eol,
+      err_line       => open,
+      err_frame      => open
     );
 
   -- ---- corner records ----------------------------------------------------------
+
+  -- A keypoint dropped by the core's ORB stage (K = 0) belongs to the frame
+  -- the core is sending: it is flagged on that frame's last record.
+  orb_frame : process (aclk) is
+  begin
+
+    if rising_edge(aclk) then
+      if k_valid = '1' and k_ready = '1' and k_eof = '1' then
+        orb_lost <= '0';
+      elsif orb_drop = '1' then
+        orb_lost <= '1';
+      end if;
+
+      if pipe_rst = '1' then
+        orb_lost <= '0';
+      end if;
+    end if;
+
+  end process orb_frame;
+
+  with_payload : if ORB generate
+    k_extra <= k_angle & k_desc;
+  end generate with_payload;
+
+  without_payload : if not ORB generate
+    k_extra <= "0";
+  end generate without_payload;
 
   pack : entity work.fastnms_corner_pack
     generic map (
       X_BITS     => X_BITS,
       Y_BITS     => Y_BITS,
-      SCORE_BITS => SCORE_BITS
+      SCORE_BITS => SCORE_BITS,
+      EXTRA_BITS => EXTRA_BITS
     )
     port map (
       clk        => aclk,
@@ -618,7 +705,9 @@ begin
       in_x       => k_x,
       in_y       => k_y,
       in_score   => k_score,
+      in_extra   => k_extra,
       in_eof     => k_eof,
+      in_lost    => orb_lost or orb_drop,
       out_valid  => p_valid,
       out_ready  => p_ready,
       out_data   => p_data,
@@ -631,15 +720,26 @@ begin
   -- record whenever it comes), so the last record of a frame whose records
   -- were dropped still finds a word unless that frame's last record came
   -- after another frame's had taken the spare word; it carries OVERFLOW for
-  -- every record dropped since the last LAST record stored.
-  p_last  <= p_data(PACKED_BITS - 1) or p_data(PACKED_BITS - 2);
+  -- every record dropped since the last LAST record stored, and for the
+  -- keypoints the core's ORB stage dropped in its frame (p_lost).
+  p_kind  <= p_data(PACKED_BITS - 1 downto PACKED_BITS - 2);
+  p_lost  <= p_data(PACKED_BITS - 3);
+  p_last  <= p_kind(1) or p_kind(0);
   q_fits  <= q_ready when p_last = '1' else
              q_spare;
   p_ready <= '1' when live = '1' else
              q_ready;
   q_valid <= p_valid and (q_fits or not live);
   drop    <= p_valid and live and not q_fits;
-  q_data  <= (p_last and (lost or drop)) & p_data;
+  p_over  <= p_last and (lost or drop or p_lost);
+
+  fifo_in_payload : if ORB generate
+    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto 0);
+  end generate fifo_in_payload;
+
+  fifo_in_fields : if not ORB generate
+    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto EXTRA_BITS);
+  end generate fifo_in_fields;
 
   drops : process (aclk) is
   begin
@@ -651,11 +751,16 @@ begin
       if drop = '1' then
         lost <= '1';
       end if;
-      dropped <= drop;
+      -- One count per clock: a second drop in the same clock (the core's
+      -- ORB stage and the FIFO) is counted on the next. (Pack drops with ORB
+      -- are a keypoint's sampling time apart, so one owed count is enough.)
+      dropped   <= drop or orb_drop or drop_owed;
+      drop_owed <= (drop and orb_drop) or (drop_owed and (drop or orb_drop));
 
       if rst = '1' then
-        lost    <= '0';
-        dropped <= '0';
+        lost      <= '0';
+        dropped   <= '0';
+        drop_owed <= '0';
       end if;
     end if;
 
@@ -681,33 +786,61 @@ begin
       busy      => f_busy
     );
 
-  f_ready <= m_axis_corners_tready and ports_on;
   f_over  <= f_data(FIFO_BITS - 1);
-  f_kind  <= f_data(PACKED_BITS - 1 downto PACKED_BITS - 2);
+  f_kind  <= f_data(FIFO_BITS - 2 downto FIFO_BITS - 3);
   f_empty <= f_kind(1) and f_kind(0);
   f_last  <= f_kind(1) or f_kind(0);
 
-  f_x     <= f_data(X_BITS + Y_BITS + SCORE_BITS - 1 downto Y_BITS + SCORE_BITS);
-  f_y     <= f_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS);
-  f_score <= f_data(SCORE_BITS - 1 downto 0);
+  f_x     <= f_data(PAYLOAD_BITS + FIELD_BITS - 1 downto PAYLOAD_BITS + Y_BITS + SCORE_BITS);
+  f_y     <= f_data(PAYLOAD_BITS + Y_BITS + SCORE_BITS - 1 downto PAYLOAD_BITS + SCORE_BITS);
+  f_score <= f_data(PAYLOAD_BITS + SCORE_BITS - 1 downto PAYLOAD_BITS);
 
   record_out : process (all) is
   begin
 
-    m_axis_corners_tdata                                                      <= (others => '0');
-    m_axis_corners_tdata(REC_X_LSB + X_BITS - 1 downto REC_X_LSB)             <= f_x;
-    m_axis_corners_tdata(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB)             <= f_y;
-    m_axis_corners_tdata(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <= f_score;
-    m_axis_corners_tdata(REC_EMPTY)                                           <= f_empty;
-    m_axis_corners_tdata(REC_LAST)                                            <= f_last;
-    m_axis_corners_tdata(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
-    m_axis_corners_tdata(REC_OVERFLOW)                                        <= f_over;
+    f_word                                                      <= (others => '0');
+    f_word(REC_X_LSB + X_BITS - 1 downto REC_X_LSB)             <= f_x;
+    f_word(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB)             <= f_y;
+    f_word(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <= f_score;
+    f_word(REC_EMPTY)                                           <= f_empty;
+    f_word(REC_LAST)                                            <= f_last;
+    f_word(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
+    f_word(REC_OVERFLOW)                                        <= f_over;
+    f_word(REC_ORB)                                             <= to_sl(ORB) and not f_empty;
 
   end process record_out;
 
+  -- Beat 1: the angle in bits 31:0; beats 2 .. 5: the descriptor, byte 0
+  -- (pairs 0 .. 7) in bits 7:0 of beat 2.
+
+  beats_payload : if ORB generate
+    f_beats <= f_data(255 downto 0) & x"00000000" & f_data(287 downto 256) & f_word;
+  end generate beats_payload;
+
+  beats_word : if not ORB generate
+    f_beats <= f_word;
+  end generate beats_word;
+
+  serializer : entity work.fastnms_record_beats
+    generic map (
+      BEATS => BEATS
+    )
+    port map (
+      clk       => aclk,
+      rst       => rst,
+      in_valid  => f_valid,
+      in_ready  => f_ready,
+      in_data   => f_beats,
+      in_single => f_empty,
+      in_last   => f_last,
+      out_valid => b_valid,
+      out_ready => m_axis_corners_tready and ports_on,
+      out_data  => m_axis_corners_tdata,
+      out_last  => m_axis_corners_tlast
+    );
+
   m_axis_corners_tkeep  <= (others => '1');
-  m_axis_corners_tlast  <= f_last;
-  m_axis_corners_tvalid <= f_valid and ports_on;
+  m_axis_corners_tvalid <= b_valid and ports_on;
 
   out_record <= f_valid and f_ready and not f_empty;
   out_last   <= f_valid and f_ready and f_last;

@@ -17,7 +17,9 @@
 -- and 7 .. MAX_HEIGHT, WIDTH then rounded down to a multiple of PPC (MIN_WIDTH:
 -- 7 with one pixel per clock, 8 with 2 or 4, the narrowest frame of
 -- fastnms_window). BUDGET.PER_CELL is clamped to MAX_PER_CELL, BUDGET.CELL
--- to 16 .. 256 and rounded down to a power of two (kept as log2(CELL) - 4).
+-- to 16 .. 256 and rounded down to a power of two (kept as log2(CELL) - 4),
+-- then (DESCRIPTOR "orb") to ORB_MAX_CELL rounded up to a power of two, the
+-- largest cell the core's ORB rows are sized for.
 --
 -- Commands (CMD) act only with KEY = 0x5A in the same write.
 --
@@ -45,7 +47,9 @@ entity fastnms_axi_regs is
     SCORE_VIDEO       : boolean  := false;
     CORNER_FIFO_DEPTH : positive := 512;
     PPC               : positive := 1;
-    MAX_PER_CELL      : natural  := 0
+    MAX_PER_CELL      : natural  := 0;
+    DESCRIPTOR        : string   := "none";
+    ORB_MAX_CELL      : positive := 256
   );
   port (
     clk : in    std_logic;
@@ -162,13 +166,30 @@ architecture rtl of fastnms_axi_regs is
     return r;
   end function selected;
 
+  constant ORB : boolean := DESCRIPTOR = "orb";
+
+  -- The largest log2(CELL) - 4 BUDGET takes.
+  function largest_cell_log return natural is
+  begin
+
+    if ORB then
+      return minimum(4, maximum(4, clog2(ORB_MAX_CELL)) - 4);
+    end if;
+
+    return 4;
+
+  end function largest_cell_log;
+
+  constant MAX_CELL_LOG : natural := largest_cell_log;
+
   -- The read-only constants.
   constant VERSION_WORD : word_t := place(VERSION_MAJOR_RESET, VERSION_MAJOR_LSB) or
                                     place(VERSION_MINOR_RESET, VERSION_MINOR_LSB) or
                                     place(VERSION_PATCH_RESET, VERSION_PATCH_LSB);
   constant MODE_WORD    : word_t := field(score_code(SCORE), MODE_SCORE_LSB, MODE_SCORE_WIDTH) or
                                     field(nms_code(NMS), MODE_NMS_LSB, MODE_NMS_WIDTH) or
-                                    field(PPC, MODE_PPC_LSB, MODE_PPC_WIDTH);
+                                    field(PPC, MODE_PPC_LSB, MODE_PPC_WIDTH) or
+                                    field(boolean'pos(ORB), MODE_DESCRIPTOR_LSB, MODE_DESCRIPTOR_WIDTH);
   constant MAX_WORD     : word_t := field(MAX_WIDTH, MAX_SIZE_WIDTH_LSB, MAX_SIZE_WIDTH_WIDTH) or
                                     field(MAX_HEIGHT, MAX_SIZE_HEIGHT_LSB, MAX_SIZE_HEIGHT_WIDTH);
   constant BUILD_WORD   : word_t := field(CORNER_FIFO_DEPTH, BUILD_FIFO_DEPTH_LSB, BUILD_FIFO_DEPTH_WIDTH) or
@@ -260,6 +281,12 @@ begin
   assert MAX_PER_CELL <= 15
     report "fastnms_axi_regs: MAX_PER_CELL must be 0 .. 15"
     severity failure;
+  assert DESCRIPTOR = "none" or DESCRIPTOR = "orb"
+    report "fastnms_axi_regs: DESCRIPTOR must be ""none"" or ""orb"""
+    severity failure;
+  assert ORB_MAX_CELL >= 16
+    report "fastnms_axi_regs: ORB_MAX_CELL must be at least 16"
+    severity failure;
   assert CORNER_FIFO_DEPTH < 2 ** 16
     report "fastnms_axi_regs: CORNER_FIFO_DEPTH must be below 65536"
     severity failure;
@@ -304,13 +331,13 @@ begin
       ht_above   <= at_least(unsigned(w_height(15 downto 0)), MAX_HEIGHT + 1);
       -- CELL: 256 and above, then the highest of bits 23 .. 21, else 16.
       if (or w_budget(31 downto BUDGET_CELL_LSB + 8)) = '1' then
-        bu_cell_log <= to_unsigned(4, 3);
+        bu_cell_log <= to_unsigned(minimum(4, MAX_CELL_LOG), 3);
       elsif w_budget(BUDGET_CELL_LSB + 7) = '1' then
-        bu_cell_log <= to_unsigned(3, 3);
+        bu_cell_log <= to_unsigned(minimum(3, MAX_CELL_LOG), 3);
       elsif w_budget(BUDGET_CELL_LSB + 6) = '1' then
-        bu_cell_log <= to_unsigned(2, 3);
+        bu_cell_log <= to_unsigned(minimum(2, MAX_CELL_LOG), 3);
       elsif w_budget(BUDGET_CELL_LSB + 5) = '1' then
-        bu_cell_log <= to_unsigned(1, 3);
+        bu_cell_log <= to_unsigned(minimum(1, MAX_CELL_LOG), 3);
       else
         bu_cell_log <= to_unsigned(0, 3);
       end if;

@@ -11,8 +11,13 @@
 -- is ignored) closes the frame instead: a held record leaves as KIND_ABORTED.
 -- open_frame is '1' while a record is held (so while abort must be kept).
 --
--- out_data is kind & x & y & score. Ready paths: in_ready is the output skid
--- buffer's registered ready (gated by abort, a register).
+-- in_extra (EXTRA_BITS) rides with each record (fastnms_axi: the ORB angle
+-- and descriptor; zero on the EMPTY record). in_lost, taken with the
+-- end-of-frame beat, says that records of the frame were lost upstream; it
+-- leaves with the frame's LAST or EMPTY record.
+--
+-- out_data is kind & lost & x & y & score & extra. Ready paths: in_ready is
+-- the output skid buffer's registered ready (gated by abort, a register).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -21,7 +26,8 @@ entity fastnms_corner_pack is
   generic (
     X_BITS     : positive := 11;
     Y_BITS     : positive := 11;
-    SCORE_BITS : positive := 8
+    SCORE_BITS : positive := 8;
+    EXTRA_BITS : positive := 1
   );
   port (
     clk        : in    std_logic;
@@ -32,10 +38,12 @@ entity fastnms_corner_pack is
     in_x       : in    unsigned(X_BITS - 1 downto 0);
     in_y       : in    unsigned(Y_BITS - 1 downto 0);
     in_score   : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_extra   : in    std_logic_vector(EXTRA_BITS - 1 downto 0);
     in_eof     : in    std_logic;
+    in_lost    : in    std_logic;
     out_valid  : out   std_logic;
     out_ready  : in    std_logic;
-    out_data   : out   std_logic_vector(X_BITS + Y_BITS + SCORE_BITS + 1 downto 0);
+    out_data   : out   std_logic_vector(X_BITS + Y_BITS + SCORE_BITS + EXTRA_BITS + 2 downto 0);
     open_frame : out   std_logic
   );
 end entity fastnms_corner_pack;
@@ -47,13 +55,14 @@ architecture rtl of fastnms_corner_pack is
   constant KIND_ABORTED : std_logic_vector(1 downto 0) := "10";
   constant KIND_EMPTY   : std_logic_vector(1 downto 0) := "11";
 
-  subtype record_t is std_logic_vector(X_BITS + Y_BITS + SCORE_BITS - 1 downto 0);
+  subtype record_t is std_logic_vector(X_BITS + Y_BITS + SCORE_BITS + EXTRA_BITS - 1 downto 0);
 
   signal held_valid : std_logic;
   signal held       : record_t;
   signal take       : std_logic; -- a beat of the core is taken
   signal emit_valid : std_logic;
   signal emit_kind  : std_logic_vector(1 downto 0);
+  signal emit_lost  : std_logic;
   signal emit_data  : record_t;
   signal skid_ready : std_logic;
 
@@ -71,6 +80,7 @@ begin
                 KIND_RECORD when in_eof = '0' else
                 KIND_LAST when held_valid = '1' else
                 KIND_EMPTY;
+  emit_lost  <= in_eof and in_lost and not abort;
   emit_data  <= held when held_valid = '1' else
                 (others => '0');
 
@@ -84,7 +94,7 @@ begin
         end if;
       elsif take = '1' then
         held_valid <= not in_eof;
-        held       <= std_logic_vector(in_x) & std_logic_vector(in_y) & std_logic_vector(in_score);
+        held       <= std_logic_vector(in_x) & std_logic_vector(in_y) & std_logic_vector(in_score) & in_extra;
       end if;
 
       if rst = '1' then
@@ -105,7 +115,7 @@ begin
       rst       => rst,
       in_valid  => emit_valid,
       in_ready  => skid_ready,
-      in_data   => emit_kind & emit_data,
+      in_data   => emit_kind & emit_lost & emit_data,
       out_valid => out_valid,
       out_ready => out_ready,
       out_data  => out_data

@@ -43,7 +43,7 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"04";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"05";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";
@@ -90,18 +90,22 @@ package fastnms_regs_pkg is
 
   -- MODE: Score and NMS variant in use. A write asking for a variant that is not built in is
   -- ignored; each build has one of each (generics SCORE and NMS).
-  constant MODE_SCORE_LSB    : natural  := 0;
-  constant MODE_SCORE_WIDTH  : positive := 4;
-  constant MODE_SCORE_OPENCV : natural  := 0;
-  constant MODE_SCORE_SAD    : natural  := 1;
-  constant MODE_NMS_LSB      : natural  := 4;
-  constant MODE_NMS_WIDTH    : positive := 4;
-  constant MODE_NMS_NONE     : natural  := 0;
-  constant MODE_NMS_3X3      : natural  := 1;
-  constant MODE_NMS_REGION4  : natural  := 2;
-  constant MODE_NMS_REGION8  : natural  := 3;
-  constant MODE_PPC_LSB      : natural  := 8;
-  constant MODE_PPC_WIDTH    : positive := 4;
+  constant MODE_SCORE_LSB        : natural  := 0;
+  constant MODE_SCORE_WIDTH      : positive := 4;
+  constant MODE_SCORE_OPENCV     : natural  := 0;
+  constant MODE_SCORE_SAD        : natural  := 1;
+  constant MODE_NMS_LSB          : natural  := 4;
+  constant MODE_NMS_WIDTH        : positive := 4;
+  constant MODE_NMS_NONE         : natural  := 0;
+  constant MODE_NMS_3X3          : natural  := 1;
+  constant MODE_NMS_REGION4      : natural  := 2;
+  constant MODE_NMS_REGION8      : natural  := 3;
+  constant MODE_PPC_LSB          : natural  := 8;
+  constant MODE_PPC_WIDTH        : positive := 4;
+  constant MODE_DESCRIPTOR_LSB   : natural  := 12;
+  constant MODE_DESCRIPTOR_WIDTH : positive := 4;
+  constant MODE_DESCRIPTOR_NONE  : natural  := 0;
+  constant MODE_DESCRIPTOR_ORB   : natural  := 1;
 
   -- CORNER_COUNT: Corner records of the last completed frame (0 for a frame without corners).
   constant CORNER_COUNT_VALUE_LSB   : natural                       := 0;
@@ -158,17 +162,27 @@ package fastnms_regs_pkg is
   constant BUDGET_CELL_WIDTH     : positive                     := 9;
   constant BUDGET_CELL_RESET     : std_logic_vector(8 downto 0) := "000010000";
 
-  -- The corner record (tdata of m_axis_corners).
-  constant REC_WIDTH       : positive := 64;
-  constant REC_X_LSB       : natural  := 0;
-  constant REC_X_WIDTH     : positive := 16;
-  constant REC_Y_LSB       : natural  := 16;
-  constant REC_Y_WIDTH     : positive := 16;
-  constant REC_SCORE_LSB   : natural  := 32;
-  constant REC_SCORE_WIDTH : positive := 16;
-  constant REC_EMPTY       : natural  := 48;
-  constant REC_LAST        : natural  := 49;
-  constant REC_ABORTED     : natural  := 50;
-  constant REC_OVERFLOW    : natural  := 51;
+  -- The corner record (tdata of m_axis_corners): beat 0, and with the ORB payload
+  -- (record format 2) REC_ORB_BEATS beats; _BEAT: the beat that holds a field.
+  constant REC_WIDTH            : positive := 64;
+  constant REC_ORB_BEATS        : positive := 6;
+  constant REC_X_LSB            : natural  := 0;
+  constant REC_X_WIDTH          : positive := 16;
+  constant REC_Y_LSB            : natural  := 16;
+  constant REC_Y_WIDTH          : positive := 16;
+  constant REC_SCORE_LSB        : natural  := 32;
+  constant REC_SCORE_WIDTH      : positive := 16;
+  constant REC_EMPTY            : natural  := 48;
+  constant REC_LAST             : natural  := 49;
+  constant REC_ABORTED          : natural  := 50;
+  constant REC_OVERFLOW         : natural  := 51;
+  constant REC_ORB              : natural  := 52;
+  constant REC_ANGLE_LSB        : natural  := 0;
+  constant REC_ANGLE_WIDTH      : positive := 32;
+  constant REC_ANGLE_BEAT       : natural  := 1;
+  constant REC_DESCRIPTOR_LSB   : natural  := 0;
+  constant REC_DESCRIPTOR_WIDTH : positive := 64;
+  constant REC_DESCRIPTOR_BEAT  : natural  := 2;
+  constant REC_DESCRIPTOR_BEATS : natural  := 4;
 
 end package fastnms_regs_pkg;

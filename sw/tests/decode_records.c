@@ -7,8 +7,9 @@
  *                                                FRAMES frames and CORNERS corners
  *
  * RECORDS: 64-bit little-endian record words. Prints each frame as
- *   frame INDEX first FIRST_WORD records N corners N stored N flags NAME,NAME|-
- * followed by one "X Y SCORE" line per stored corner; the one-shot mode ends with
+ *   frame INDEX first FIRST_WORD records N words N corners N stored N flags NAME,NAME|-
+ * followed by one "X Y SCORE" line per stored corner ("X Y SCORE ANGLE DESCRIPTOR", in
+ * hexadecimal, in an ORB frame of the stream mode); the one-shot mode ends with
  *   result CODE frames N corners N
  * Exit status 0, or 1 on a usage or file error.
  */
@@ -27,13 +28,14 @@ static void print_frame(const struct fastnms_frame *f)
         {FASTNMS_FRAME_EMPTY, "empty"},           {FASTNMS_FRAME_ABORTED, "aborted"},
         {FASTNMS_FRAME_OVERFLOW, "overflow"},     {FASTNMS_FRAME_INCOMPLETE, "incomplete"},
         {FASTNMS_FRAME_MALFORMED, "malformed"},   {FASTNMS_FRAME_TRUNCATED, "truncated"},
+        {FASTNMS_FRAME_ORB, "orb"},
     };
     const char *sep = "";
     size_t i;
 
-    printf("frame %lu first %llu records %lu corners %lu stored %lu flags ",
+    printf("frame %lu first %llu records %lu words %lu corners %lu stored %lu flags ",
            (unsigned long)f->index, (unsigned long long)f->first_word, (unsigned long)f->records,
-           (unsigned long)f->corners, (unsigned long)f->stored);
+           (unsigned long)f->words, (unsigned long)f->corners, (unsigned long)f->stored);
     for (i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (f->flags & names[i].bit) {
             printf("%s%s", sep, names[i].name);
@@ -41,8 +43,16 @@ static void print_frame(const struct fastnms_frame *f)
         }
     }
     printf("%s\n", *sep ? "" : "-");
-    for (i = 0; i < f->stored; i++)
-        printf("%u %u %u\n", f->corner[i].x, f->corner[i].y, f->corner[i].score);
+    for (i = 0; i < f->stored; i++) {
+        printf("%u %u %u", f->corner[i].x, f->corner[i].y, f->corner[i].score);
+        if ((f->flags & FASTNMS_FRAME_ORB) && f->orb != NULL) {
+            size_t b;
+            printf(" %08lx ", (unsigned long)f->orb[i].angle_bits);
+            for (b = 0; b < sizeof f->orb[i].descriptor; b++)
+                printf("%02x", f->orb[i].descriptor[b]);
+        }
+        printf("\n");
+    }
 }
 
 static uint64_t *read_words(const char *path, size_t *count)
@@ -80,14 +90,16 @@ static uint64_t *read_words(const char *path, size_t *count)
 static int stream(const uint64_t *words, size_t count, size_t chunk, size_t capacity)
 {
     struct fastnms_corner *storage = capacity ? malloc(capacity * sizeof *storage) : NULL;
+    struct fastnms_orb *orb = capacity ? malloc(capacity * sizeof *orb) : NULL;
     struct fastnms_decoder dec;
     struct fastnms_frame frame;
     size_t at = 0;
     int rc;
 
-    if (capacity && storage == NULL)
+    if (capacity && (storage == NULL || orb == NULL))
         return 1;
-    if (fastnms_decoder_init(&dec, storage, capacity) != FASTNMS_OK)
+    if (fastnms_decoder_init(&dec, storage, capacity) != FASTNMS_OK ||
+        fastnms_decoder_set_orb(&dec, orb) != FASTNMS_OK)
         return 1;
     /* Pieces of `chunk` words, as DMA buffers: a frame may span several. */
     while (at < count) {
@@ -100,6 +112,7 @@ static int stream(const uint64_t *words, size_t count, size_t chunk, size_t capa
             if (rc < 0) {
                 printf("error %d %s\n", rc, fastnms_strerror(rc));
                 free(storage);
+                free(orb);
                 return 1;
             }
             p += used;
@@ -111,6 +124,7 @@ static int stream(const uint64_t *words, size_t count, size_t chunk, size_t capa
     if (fastnms_decoder_flush(&dec, &frame) == FASTNMS_FRAME)
         print_frame(&frame);
     free(storage);
+    free(orb);
     return 0;
 }
 

@@ -20,17 +20,20 @@ from fastnms.testing import images as testimages
 from fastnms.testing.fixtures import SEED
 
 # The order of the C decoder's flag bits (FASTNMS_FRAME_*) in its output.
-C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated"]
+C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated", "orb"]
 
 
-def rec(x=0, y=0, score=0, *, last=False, empty=False, aborted=False, overflow=False) -> int:
-    """One record word."""
+def rec(
+    x=0, y=0, score=0, *, last=False, empty=False, aborted=False, overflow=False, orb=False
+) -> int:
+    """One record word (with `orb`, the first word of a record in format 2)."""
     word = x << regs.REC_X.lsb | y << regs.REC_Y.lsb | score << regs.REC_SCORE.lsb
     for flag, fld in [
         (last, regs.REC_LAST),
         (empty, regs.REC_EMPTY),
         (aborted, regs.REC_ABORTED),
         (overflow, regs.REC_OVERFLOW),
+        (orb, regs.REC_ORB),
     ]:
         word |= int(flag) << fld.lsb
     return word
@@ -39,17 +42,21 @@ def rec(x=0, y=0, score=0, *, last=False, empty=False, aborted=False, overflow=F
 EMPTY = rec(last=True, empty=True)
 
 
-def render(frames: list[Frame], capacity: int | None = None) -> str:
-    """Frames in the C test program's format, with room for `capacity` corners per frame."""
+def render(frames: list[Frame], capacity: int | None = None, orb: bool = True) -> str:
+    """Frames in the C test program's format, with room for `capacity` corners per frame
+    (and their ORB payloads unless `orb` is False: the one-shot mode keeps none)."""
     lines = []
     for f in frames:
         stored = len(f.corners) if capacity is None else min(capacity, len(f.corners))
         flags = f.flags + (["truncated"] if stored < len(f.corners) else [])
         lines.append(
-            f"frame {f.index} first {f.first_word} records {f.records} corners {len(f.corners)}"
-            f" stored {stored} flags {','.join(sorted(flags, key=C_FLAGS.index)) or '-'}"
+            f"frame {f.index} first {f.first_word} records {f.records} words {f.words}"
+            f" corners {len(f.corners)} stored {stored}"
+            f" flags {','.join(sorted(flags, key=C_FLAGS.index)) or '-'}"
         )
-        lines += [f"{x} {y} {s}" for x, y, s in f.corners[:stored]]
+        for i, (x, y, s) in enumerate(f.corners[:stored]):
+            payload = f" {f.angle_bits[i]:08x} {f.descriptors[i].hex()}" if f.orb and orb else ""
+            lines.append(f"{x} {y} {s}{payload}")
     return "".join(line + "\n" for line in lines)
 
 
@@ -244,11 +251,56 @@ def test_malformed_records(words, c_programs, tmp_path):
 
 
 def test_reserved_bits_are_ignored(c_programs, tmp_path):
-    high = ((1 << 64) - 1) & ~((1 << (regs.REC_OVERFLOW.lsb + 1)) - 1)
+    high = ((1 << 64) - 1) & ~((1 << (regs.REC_ORB.lsb + 1)) - 1)
     frames = decoded(c_programs, tmp_path, [rec(3, 4, 5) | high, rec(6, 7, 8, last=True) | high])
     frames += decoded(c_programs, tmp_path, [EMPTY | high])
     assert [f.flags for f in frames] == [[], ["empty"]]
     assert frames[0].corners == [(3, 4, 5), (6, 7, 8)]
+
+
+def orb_record(x, y, score, angle_bits: int, descriptor: bytes, **flags) -> list[int]:
+    """The REC_ORB_BEATS words of one keypoint in record format 2."""
+    payload = [0] * (regs.REC_ORB_BEATS - 1)
+    payload[regs.REC_ANGLE_BEAT - 1] = angle_bits << regs.REC_ANGLE.lsb
+    for b in range(regs.REC_DESCRIPTOR_BEATS):
+        chunk = descriptor[8 * b : 8 * b + 8]
+        payload[regs.REC_DESCRIPTOR_BEAT - 1 + b] = int.from_bytes(chunk, "little")
+    return [rec(x, y, score, orb=True, **flags), *payload]
+
+
+def test_orb_records(c_programs, tmp_path):
+    """Record format 2: each keypoint's angle and 32 descriptor bytes, whatever the pieces;
+    the EMPTY record stays one word; the frame ends after its LAST record's payload."""
+    desc = [bytes(range(32)), bytes(range(255, 223, -1))]
+    words = orb_record(40, 31, 27, 0x43340000, desc[0])  # 180.0 degrees
+    words += orb_record(33, 50, 90, 0x3F800000, desc[1], last=True)  # 1.0
+    words += [EMPTY]
+    words += orb_record(31, 31, 20, 0x42B40000, desc[0], last=True, aborted=True)
+    first, empty, aborted = decoded(c_programs, tmp_path, words, chunks=(0, 1, 2, 5, 6, 7))
+    assert first.orb and first.corners == [(40, 31, 27), (33, 50, 90)]
+    assert first.angle_bits == [0x43340000, 0x3F800000] and first.descriptors == desc
+    assert (first.records, first.words, first.flags) == (2, 12, ["orb"])
+    assert empty.flags == ["empty"] and (empty.records, empty.words) == (1, 1)
+    assert aborted.flags == ["aborted", "orb"] and aborted.angle_bits == [0x42B40000]
+    # A stream cut in a payload: the frame is incomplete, its payload zero.
+    (tail,) = decoded(c_programs, tmp_path, words[:9])
+    assert tail.flags == ["incomplete", "orb"] and tail.angle_bits == [0x43340000, 0]
+    assert tail.descriptors == [desc[0], bytes(32)] and tail.words == 9
+
+
+@pytest.mark.parametrize(
+    "words",
+    [
+        [rec(last=True, empty=True, orb=True), *[0] * 5],  # ORB with EMPTY
+        [*orb_record(40, 40, 9, 1, bytes(32)), rec(41, 40, 9, last=True)],  # mixed
+        [rec(41, 40, 9), *orb_record(40, 40, 9, 1, bytes(32), last=True)],  # mixed
+    ],
+    ids=["orb-empty", "orb-then-plain", "plain-then-orb"],
+)
+def test_malformed_orb_records(words, c_programs, tmp_path):
+    frames = decoded(c_programs, tmp_path, [*words, rec(5, 5, 50, last=True)])
+    assert frames[0].malformed and frames[0].complete
+    assert frames[-1].corners == [(5, 5, 50)] and not frames[-1].malformed
 
 
 def test_python_rejects_words_out_of_range():
@@ -268,6 +320,7 @@ def test_random_words(rng, c_programs, tmp_path):
             (regs.REC_EMPTY, 0.1),
             (regs.REC_ABORTED, 0.05),
             (regs.REC_OVERFLOW, 0.05),
+            (regs.REC_ORB, 0.03 if _ % 2 else 0.9),  # payload words follow (format 2)
         ]:
             words |= (rng.random(n) < p).astype(np.uint64) << np.uint64(fld.lsb)
         # a few clean EMPTY records, so that EMPTY frames are frequent

@@ -59,6 +59,8 @@ def all_generics() -> dict[str, object]:
         "CORNER_FIFO_DEPTH": 512,
         "PPC": 1,
         "MAX_PER_CELL": 0,
+        "DESCRIPTOR": "none",
+        "ORB_MAX_CELL": 16,
         **GENERICS,
     }
 

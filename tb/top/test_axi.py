@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import importlib.util
 import json
+import subprocess
+from pathlib import Path
 
+import numpy as np
 import pytest
+from fastnms.sim.records import decode_records
 from fastnms.testing import images as testimages
 
 from tb.harness import run_cocotb
+
+REPO = Path(__file__).resolve().parents[2]
 
 SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
@@ -220,3 +227,60 @@ def test_axi_live_1920(request):
         name=request.node.nodeid,
         env={"TB_STALL": "0.2"},
     )
+
+
+# DESCRIPTOR "orb": 128x80 frames (ORB's 31-pixel border leaves a 66x18 interior), a
+# corner FIFO of 8 records (48 beats).
+ORB_SMALL = {
+    "MAX_WIDTH": 128,
+    "MAX_HEIGHT": 80,
+    "CORNER_FIFO_DEPTH": 8,
+    "MAX_PER_CELL": 4,
+    "DESCRIPTOR": "orb",
+    "ORB_MAX_CELL": 32,
+}
+
+
+@pytest.mark.parametrize(
+    ("score", "nms"),
+    [
+        pytest.param("opencv", "3x3", id="opencv-3x3"),
+        pytest.param("sad", "none", marks=pytest.mark.slow, id="sad-none"),
+    ],
+)
+def test_axi_orb(request, tmp_path, score, nms):
+    """DESCRIPTOR "orb" through the top: record format 2 decoded by the Python decoder
+    equal to orb_features (x, y, score, angle bits, descriptor) frame by frame, each
+    with its CELL and K; keypoints dropped with K = 0 counted and flagged
+    (tb/top/axi_orb_tb.py). Then the C decoder on the same words: the same keypoints."""
+    words_file = tmp_path / "words.json"
+    run_cocotb(
+        "fastnms_axi",
+        "axi_orb_tb",
+        {**ORB_SMALL, "SCORE": score, "NMS": nms},
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2", "TB_OUT": str(words_file)},
+    )
+    words = [w for frame in json.loads(words_file.read_text()) for w in frame]
+    frames = decode_records(words)
+    assert sum(len(f.corners) for f in frames) >= 10, "too few keypoints for a test"
+    want = [
+        f"{x} {y} {s} {a:08x} {d.hex()}"
+        for f in frames
+        for (x, y, s), a, d in zip(f.corners, f.angle_bits, f.descriptors, strict=True)
+    ]
+    records = tmp_path / "records.bin"
+    np.asarray(words, dtype="<u8").tofile(records)
+    program = c_decoder(tmp_path)
+    out = subprocess.run([program, records], capture_output=True, text=True, timeout=30)
+    assert out.returncode == 0, out.stderr
+    got = [line for line in out.stdout.splitlines() if not line.startswith("frame ")]
+    assert got == want, "the C decoder's keypoints differ from the Python decoder's"
+
+
+def c_decoder(where: Path) -> Path:
+    """sw/tests/decode_records built with sw/fastnms.c (sw/tests/cbuild.py)."""
+    spec = importlib.util.spec_from_file_location("cbuild", REPO / "sw" / "tests" / "cbuild.py")
+    cbuild = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cbuild)
+    return cbuild.build_programs(where)["decode_records"]
