@@ -56,14 +56,15 @@ check-ghdl:
 	  else echo "make: GHDL >= 2.0 is missing: run 'sudo apt-get install -y ghdl'"; exit 1; fi; \
 	fi
 
-# The fast simulation engine: Verilator and a C++ compiler (Debian 12: Verilator 5.006).
+# The fast simulation engine: Verilator and a C++ compiler (Debian 12: Verilator 5.006);
+# Icarus Verilog runs the ORB units' GHDL netlists (tb/orb/test_orb_netlists.py).
 .PHONY: check-verilator
 check-verilator:
-	@if ! command -v verilator >/dev/null || ! command -v g++ >/dev/null; then \
+	@if ! command -v verilator >/dev/null || ! command -v g++ >/dev/null || ! command -v iverilog >/dev/null; then \
 	  if [ "$$(id -u)" = 0 ]; then \
-	    echo "make: installing Verilator and g++ with apt-get"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq verilator g++ make >/dev/null; \
-	  else echo "make: Verilator and g++ are missing: run 'sudo apt-get install -y verilator g++ make'"; exit 1; fi; \
+	    echo "make: installing Verilator, Icarus Verilog and g++ with apt-get"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq verilator iverilog g++ make >/dev/null; \
+	  else echo "make: Verilator, Icarus Verilog or g++ is missing: run 'sudo apt-get install -y verilator iverilog g++ make'"; exit 1; fi; \
 	fi
 
 # ---- the two README commands -------------------------------------------------

@@ -31,6 +31,8 @@ from fastnms.sim.run import (
     MAX_HEIGHT,
     MAX_WIDTH,
     MIN_SIZE,
+    ORB_MAX_CELL,
+    ORB_ON_THE_FAST_ENGINE,
     FrameResult,
     SimError,
     SimResult,
@@ -343,6 +345,14 @@ def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
         "; the simulated IP is then built with the budget (MAX_PER_CELL 15); --nms 3x3 or none",
     )
     p.add_argument(
+        "--orb",
+        action="store_true",
+        help="build the simulated IP with ORB (DESCRIPTOR orb): keypoints 31 pixels or more "
+        "inside the frame with their angles and descriptors, as `golden --orb` writes them; "
+        f"needs --cell 16 or {ORB_MAX_CELL} and --per-cell (ORB in the RTL runs behind the "
+        "budget), --nms 3x3 or none, --ppc 1 and, for now, --engine cocotb",
+    )
+    p.add_argument(
         "--engine",
         choices=ENGINES,
         default="verilator",
@@ -415,7 +425,7 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "--json",
         metavar="OUT.json",
         help="write width, height, threshold, score, nms, ppc, cell, per_cell (null without a "
-        "budget), engine, timing, corners, cycles, "
+        "budget), orb, engine, timing, corners, cycles, "
         "input_stalls, status_flags, wall_seconds (and `frames` for several)",
     )
     return p
@@ -603,6 +613,20 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             "--cell and --per-cell need --nms 3x3 or none (the budget takes records in "
             "raster order; the region NMS's come as regions close)"
         )
+    if args.orb:
+        if budget is None:
+            raise UsageError(
+                "--orb needs --cell and --per-cell (ORB in the RTL runs behind the budget)"
+            )
+        if budget[0] not in (16, ORB_MAX_CELL):
+            raise UsageError(
+                f"--orb takes --cell 16 or {ORB_MAX_CELL} (the simulated IP's "
+                f"ORB_MAX_CELL), got {budget[0]}"
+            )
+        if args.ppc != 1:
+            raise UsageError("--orb needs --ppc 1")
+        if args.engine == "verilator":
+            raise UsageError(f"--orb needs --engine cocotb: {ORB_ON_THE_FAST_ENGINE}")
     progress = Progress()
 
     def announce(text: str) -> None:
@@ -623,6 +647,7 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
                 args.ppc,
                 build_size([img.shape for _, img in frames]),
                 budget is not None,
+                args.orb,
             ),
             budget=budget,
         )
@@ -641,7 +666,8 @@ def frame_summary(name: str, args: argparse.Namespace, frame: FrameResult) -> st
         f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}"
         f"{f' ppc={args.ppc}' if args.ppc != 1 else ''}"
         f"{f' cell={args.cell} per-cell={args.per_cell}' if args.cell else ''}: "
-        f"{frame.records.shape[0]} corners; {frame.cycles} cycles, "
+        f"{frame.records.shape[0]} {'ORB keypoints' if args.orb else 'corners'}; "
+        f"{frame.cycles} cycles, "
         f"{frame.cycles / (w * h):.4f} cycles per pixel"
     )
 
@@ -668,11 +694,22 @@ def status_flags(status: int) -> list[str]:
     return [name for name, f in regs.REGISTERS["STATUS"].fields.items() if f.get(status)]
 
 
-def frames_csv_bytes(sim: SimResult) -> bytes:
+def frames_csv_bytes(sim: SimResult, orb: bool = False) -> bytes:
+    if orb:
+        tables = [orb_csv_bytes(frame_features(f)).decode("ascii") for f in sim.frames]
+        lines = ["frame," + tables[0].splitlines()[0]]
+        for i, table in enumerate(tables):
+            lines += [f"{i},{line}" for line in table.splitlines()[1:]]
+        return ("\n".join(lines) + "\n").encode("ascii")
     lines = ["frame,x,y,score"]
     for i, f in enumerate(sim.frames):
         lines += [f"{i},{x},{y},{s}" for x, y, s in f.records.tolist()]
     return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def frame_features(frame: FrameResult) -> OrbFeatures:
+    """A simulated ORB frame's keypoints as the golden model's OrbFeatures."""
+    return OrbFeatures(frame.records, frame.angle_bits.view(np.float32), frame.descriptors)
 
 
 def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim: SimResult):
@@ -687,6 +724,7 @@ def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim
         "ppc": args.ppc,
         "cell": args.cell,
         "per_cell": args.per_cell,
+        "orb": args.orb,
         "engine": args.engine,
         "timing": timing_of(args).as_dict(),
         "corners": sum(int(f.records.shape[0]) for f in sim.frames),
@@ -722,14 +760,15 @@ def rtl_inputs(args: argparse.Namespace, *outputs: str | None) -> list[tuple[str
 
 
 def write_sim_outputs(frames, sim: SimResult, args: argparse.Namespace, extra=()) -> None:
+    first = frame_features(sim.frames[0]) if args.orb else sim.records
     if len(frames) == 1:
-        write_outputs(frames[0][1], sim.records, args, extra)
+        write_outputs(frames[0][1], first, args, extra)
         return
     extra = list(extra)
     if args.csv:
-        extra.append((args.csv, frames_csv_bytes(sim)))
+        extra.append((args.csv, frames_csv_bytes(sim, args.orb)))
     args_no_csv = argparse.Namespace(**{**vars(args), "csv": None})
-    write_outputs(frames[0][1], sim.records, args_no_csv, extra)
+    write_outputs(frames[0][1], first, args_no_csv, extra)
 
 
 def run_sim(args: argparse.Namespace) -> int:
@@ -766,12 +805,15 @@ def run_compare(args: argparse.Namespace) -> int:
     status = 0
     budget = budget_of(args)
     for i, ((name, img), got) in enumerate(zip(frames, sim.frames, strict=True)):
+        prefix = f"frame {i} ({os.path.basename(name)}): " if len(frames) > 1 else ""
+        if args.orb:
+            status |= compare_orb(prefix, img, got, args)
+            continue
         references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
         if args.score == "opencv" and args.nms == "3x3":
             references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
         if budget is not None:
             references = {f"{k} + budget": cell_budget(v, *budget) for k, v in references.items()}
-        prefix = f"frame {i} ({os.path.basename(name)}): " if len(frames) > 1 else ""
         for ref, want in references.items():
             diff = differences(got.records, want)
             if diff:
@@ -784,6 +826,40 @@ def run_compare(args: argparse.Namespace) -> int:
             else:
                 print(f"{prefix}rtl vs {ref}: identical ({want.shape[0]} corners)")
     return status
+
+
+def compare_orb(prefix: str, img: np.ndarray, got: FrameResult, args: argparse.Namespace) -> int:
+    """The RTL's ORB keypoints against the golden model's: positions and scores, then
+    each keypoint's angle (float32 bits) and descriptor (all 256 bits); 1 if any differ."""
+    want = orb_features(img, args.threshold, args.score, args.nms, args.cell, args.per_cell)
+    diff = differences(got.records, want.records)
+    if diff:
+        print(
+            f"{prefix}rtl vs golden model ORB: DIFFERENT "
+            f"({got.records.shape[0]} vs {want.records.shape[0]} keypoints)"
+        )
+        print("\n".join(diff))
+        return 1
+    angles = got.angle_bits != want.angles.view(np.uint32)
+    bits = np.unpackbits(got.descriptors ^ want.descriptors, axis=1).sum(axis=1)
+    bad = np.flatnonzero(angles | (bits > 0))
+    if bad.size:
+        print(
+            f"{prefix}rtl vs golden model ORB: DIFFERENT (angle or descriptor of {bad.size} "
+            f"of {want.records.shape[0]} keypoints)"
+        )
+        for i in bad[:10].tolist():
+            x, y, _ = want.records[i].tolist()
+            print(
+                f"  ({x}, {y}): angle bits {int(got.angle_bits[i]):08x} vs "
+                f"{int(want.angles.view(np.uint32)[i]):08x}, {int(bits[i])} descriptor bits differ"
+            )
+        return 1
+    print(
+        f"{prefix}rtl vs golden model ORB: identical ({want.records.shape[0]} keypoints, "
+        "angle bits and descriptors)"
+    )
+    return 0
 
 
 Handler = Callable[[argparse.Namespace], int]

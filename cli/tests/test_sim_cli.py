@@ -152,6 +152,11 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["--cell", "32", "--per-cell", "2", "--nms", "region8", "IMG"], "need --nms 3x3 or none"),
         (["--cell", "48", "--per-cell", "2", "IMG"], "cell must be one of"),
         (["--cell", "32", "--per-cell", "16", "IMG"], "per-cell must be an integer in 1..15"),
+        (["--orb", "IMG"], "--orb needs --cell and --per-cell"),
+        (["--orb", "--cell", "64", "--per-cell", "2", "IMG"], "--orb takes --cell 16 or 32"),
+        (["--orb", "--cell", "16", "--per-cell", "2", "--ppc", "2", "IMG"], "--orb needs --ppc 1"),
+        (["--orb", "--cell", "16", "--per-cell", "2", "--nms", "region4", "IMG"], "3x3 or none"),
+        (["--orb", "--cell", "16", "--per-cell", "2", "IMG"], "--orb needs --engine cocotb"),
     ],
 )
 def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
@@ -190,6 +195,38 @@ def test_sim_and_compare_with_a_budget(photo: Path, tmp_path: Path, capsys):
     out = capsys.readouterr().out
     assert "rtl vs golden model + budget: identical" in out
     assert "FAST + budget: identical" in out
+
+
+@pytest.mark.slow
+def test_sim_and_compare_orb(tmp_path: Path, capsys):
+    """--orb (the top built with DESCRIPTOR orb, the cocotb engine): the CSV equals `golden
+    --orb`'s (angles and descriptors), the JSON says orb, and `compare --orb` finds the
+    angles' float32 bits and every descriptor bit identical; fastnms.sim.detect_and_compute
+    gives golden detect_and_compute's keypoints and descriptors."""
+    path = tmp_path / "crop.png"
+    cv2.imwrite(str(path), testimages.blurred_noise(np.random.default_rng(7), 96, 72))
+    budget = ["--cell", "16", "--per-cell", "3"]
+    gold, rtl, out = tmp_path / "g.csv", tmp_path / "r.csv", tmp_path / "r.json"
+    assert cli.main(["golden", str(path), "-t", "8", "--orb", *budget, "--csv", str(gold)]) == 0
+    argv = ["sim", str(path), "-t", "8", "--orb", *budget, "--engine", "cocotb"]
+    assert cli.main([*argv, "--csv", str(rtl), "--json", str(out)]) == 0
+    assert rtl.read_text() == gold.read_text()
+    assert len(gold.read_text().splitlines()) > 3, "too few keypoints for a test"
+    assert json.loads(out.read_text())["orb"] is True
+    capsys.readouterr()
+    argv = ["compare", str(path), "-t", "8", "--orb", *budget, "--engine", "cocotb"]
+    assert cli.main(argv) == 0
+    assert "rtl vs golden model ORB: identical" in capsys.readouterr().out
+
+    from fastnms.golden import orb
+    from fastnms.sim import detect_and_compute
+
+    img = load_grey(path)
+    keypoints, descriptors = detect_and_compute(img, 8, cell=16, per_cell=3)
+    want_kp, want_d = orb.detect_and_compute(img, 8, cell=16, per_cell=3)
+    got = [(k.pt, k.angle, k.response, k.size, k.octave) for k in keypoints]
+    assert got == [(k.pt, k.angle, k.response, k.size, k.octave) for k in want_kp]
+    assert descriptors.dtype == np.uint8 and np.array_equal(descriptors, want_d)
 
 
 def test_missing_simulator_is_named(photo: Path, capsys, monkeypatch):

@@ -65,7 +65,16 @@ DEEPER = {
     "fastnms_orb_rows": 5,
 }
 # Entities made of the ones above, several minutes in yosys: under make test-full.
-SLOW_SYNTH = ("fastnms_orb_describe", "fastnms_orb_feed", "fastnms_orb_stage")
+# (The ORB blocks of more than a minute each; the float units' netlists are also simulated
+# in tb/orb/test_orb_netlists.py.)
+SLOW_SYNTH = (
+    "fastnms_orb_describe",
+    "fastnms_orb_feed",
+    "fastnms_orb_stage",
+    "fastnms_orb_cos_sin",
+    "fastnms_mulhi64",
+    "fastnms_orb_rotate",
+)
 LUTRAM = ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM256X1S", "RAM32M16")
 
 

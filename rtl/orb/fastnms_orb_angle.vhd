@@ -68,7 +68,8 @@ architecture rtl of fastnms_orb_angle is
 
   end function bit_length;
 
-  -- |m| for |m| < 2**20 (GHDL's Verilog netlist has no abs).
+  -- |m| for |m| < 2**20 (GHDL's Verilog netlist has no abs; and its synthesis of
+  -- 0 - m, an integer minus a signed, gives m: measured, so vectors only).
   function magnitude (m : signed(20 downto 0)) return unsigned is
     variable v : signed(20 downto 0);
   begin
@@ -76,7 +77,7 @@ architecture rtl of fastnms_orb_angle is
     v := m;
 
     if m(20) = '1' then
-      v := 0 - m;
+      v := to_signed(0, 21) - m;
     end if;
 
     return unsigned(v(19 downto 0));

@@ -122,35 +122,41 @@ architecture rtl of fastnms_orb_cos_sin is
 
   -- A product is issued on clock `tick`.
   function issues (tick : natural) return boolean is
+    variable found : boolean := tick = T_Z;
   begin
 
     for i in 1 to 10 loop
 
       if tick = T_SIN + 4 * (i - 1) or (i <= 9 and tick = T_COS + 4 * (i - 1)) then
-        return true;
+        found := true;
       end if;
 
     end loop;
 
-    return tick = T_Z;
+    return found;
 
   end function issues;
 
   -- The coefficient S of the product issued on clock `tick` (S - mulhi(a, b)).
   function coefficient (tick : natural) return word_t is
+    variable s : word_t := (others => '0');
   begin
 
     for i in 1 to 8 loop
 
+      -- (Bit 63 apart: GHDL 2.0's synthesis turned the whole of
+      -- x"8000000000000000", COS_C(1), into 0.)
       if tick = T_SIN + 4 * (i - 1) then
-        return SIN_C(9 - i);
+        s(62 downto 0) := SIN_C(9 - i)(62 downto 0);
+        s(63)          := SIN_C(9 - i)(63);
       elsif tick = T_COS + 4 * (i - 1) then
-        return COS_C(9 - i);
+        s(62 downto 0) := COS_C(9 - i)(62 downto 0);
+        s(63)          := COS_C(9 - i)(63);
       end if;
 
     end loop;
 
-    return (others => '0');
+    return s;
 
   end function coefficient;
 
@@ -316,7 +322,7 @@ begin
           f2_t0 <= to_unsigned(11, 5);
         else
           f2_m0 <= unsigned('1' & x_r(22 downto 0));
-          f2_t0 <= resize(126 - e, 5);
+          f2_t0 <= resize(to_unsigned(126, 8) - e, 5);
         end if;
 
         -- 3. k, and d - 1 for it.
@@ -481,8 +487,8 @@ begin
 
     if rising_edge(clk) then
       -- The exponent fields and the signs (t, k and the sign of r are held).
-      field_hi <= 126 - resize(t_r, 8);
-      field_lo <= 125 - resize(t_r, 8);
+      field_hi <= to_unsigned(126, 8) - resize(t_r, 8);
+      field_lo <= to_unsigned(125, 8) - resize(t_r, 8);
       q        := f3_k mod 4;
       q_odd    <= to_sl(q mod 2 = 1);
       -- cos x: +cos r, -sin r, -cos r, +sin r; sin x: +sin r, +cos r, -sin r, -cos r

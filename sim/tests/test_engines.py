@@ -330,7 +330,7 @@ def test_netlist_bit_strings_become_binary_literals():
     Verilog): the build rewrites them as the binary literals they stand for."""
     from fastnms.sim import verilator
 
-    text = "wire x;\n  assign n1 = s ? \"" + "10" * 20 + "\" : r;\n  assign b = {m, \"011\"};\n"
+    text = 'wire x;\n  assign n1 = s ? "' + "10" * 20 + '" : r;\n  assign b = {m, "011"};\n'
     fixed = verilator.fix_bit_strings(text)
     assert fixed == (
         "wire x;\n  assign n1 = s ? 40'b" + "10" * 20 + " : r;\n  assign b = {m, 3'b011};\n"

@@ -130,6 +130,7 @@ def test_core_orb(request, generics, frames):
     )
 
 
+@pytest.mark.slow
 def test_core_orb_bad_input(request):
     """DESCRIPTOR "orb": a frame cut short and a reset while keypoints are in ORB, each
     followed by an exact frame; noise at t = 0 with K = 15 (the input held)."""

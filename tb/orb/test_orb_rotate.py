@@ -21,7 +21,7 @@ def test_pattern_package_is_the_golden_pattern():
 @pytest.mark.parametrize(
     ("lanes", "count"),
     [
-        (8, 200),
+        (8, 100),
         pytest.param(16, 100, marks=pytest.mark.slow),
         pytest.param(1, 30, marks=pytest.mark.slow),
     ],

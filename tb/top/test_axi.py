@@ -52,7 +52,11 @@ def test_axi_frames(request, score, nms):
     )
 
 
-@pytest.mark.parametrize(("score", "nms"), [("opencv", "3x3"), ("sad", "region4")])
+# opencv + 3x3 in `make test`; sad + region4 (the region NMS) in `make test-full`.
+@pytest.mark.parametrize(
+    ("score", "nms"),
+    [("opencv", "3x3"), pytest.param("sad", "region4", marks=pytest.mark.slow)],
+)
 def test_axi_robustness(request, score, nms):
     """Malformed frames, aresetn and soft reset mid-frame, interrupt, enable,
     the corner FIFO filling, VALIDs low in reset, the live-camera mode. With the
