@@ -32,7 +32,6 @@ from fastnms.sim.run import (
     MAX_WIDTH,
     MIN_SIZE,
     ORB_MAX_CELL,
-    ORB_ON_THE_FAST_ENGINE,
     FrameResult,
     SimError,
     SimResult,
@@ -350,7 +349,7 @@ def add_rtl_args(p: argparse.ArgumentParser, what: str) -> None:
         help="build the simulated IP with ORB (DESCRIPTOR orb): keypoints 31 pixels or more "
         "inside the frame with their angles and descriptors, as `golden --orb` writes them; "
         f"needs --cell 16 or {ORB_MAX_CELL} and --per-cell (ORB in the RTL runs behind the "
-        "budget), --nms 3x3 or none, --ppc 1 and, for now, --engine cocotb",
+        "budget), --nms 3x3 or none, --ppc 1",
     )
     p.add_argument(
         "--engine",
@@ -625,8 +624,6 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             )
         if args.ppc != 1:
             raise UsageError("--orb needs --ppc 1")
-        if args.engine == "verilator":
-            raise UsageError(f"--orb needs --engine cocotb: {ORB_ON_THE_FAST_ENGINE}")
     progress = Progress()
 
     def announce(text: str) -> None:

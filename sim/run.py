@@ -42,10 +42,6 @@ ENGINES = ("verilator", "cocotb")
 # The largest ORB cell of the command line's ORB builds (their ORB_MAX_CELL): ORB-SLAM's
 # cells are about 30 pixels; each doubling doubles the rows the core keeps.
 ORB_MAX_CELL = 32
-ORB_ON_THE_FAST_ENGINE = (
-    "ORB runs on the cocotb engine only for now: GHDL's netlist of fastnms_orb_sample, which "
-    "the fast engine simulates, differs from the RTL (tb/orb/test_orb_netlists.py)"
-)
 # The STATUS bits that flag malformed video.
 MALFORMED = ("EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY")
 
@@ -186,8 +182,6 @@ def run_rtl(
     generics = generics or generics_for(score, nms, budget=budget is not None)
     if budget is not None and not int(generics.get("MAX_PER_CELL", 0)):
         raise SimError("a budget needs a build with the budget (MAX_PER_CELL > 0)")
-    if engine == "verilator" and generics.get("DESCRIPTOR") == "orb":
-        raise SimError(ORB_ON_THE_FAST_ENGINE)
     if engine == "verilator":
         return _run_verilator(frames, generics, timing, progress, announce, power_up_seed, budget)
     if engine == "cocotb":
@@ -337,7 +331,7 @@ def detect_and_compute(
     cell: int = 16,
     per_cell: int = 4,
     *,
-    engine: str = "cocotb",
+    engine: str = "verilator",
     announce: Callable[[str], None] | None = None,
 ) -> tuple[tuple[cv2.KeyPoint, ...], np.ndarray]:
     """The RTL's ORB keypoints and descriptors on one image (fastnms_axi with DESCRIPTOR
@@ -345,8 +339,7 @@ def detect_and_compute(
     of cv2.KeyPoint (pt, response = score, angle, size 31, octave 0) and an (N, 32) uint8
     array, sorted by y then x; at most per_cell keypoints per cell x cell square. The
     hardware needs the budget (per_cell 1..15; with 0 it may drop keypoints) and a cell
-    of 16 or ORB_MAX_CELL; NMS "3x3" or "none". The cocotb engine (the RTL under GHDL,
-    a few thousand clocks per second): see ORB_ON_THE_FAST_ENGINE."""
+    of 16 or ORB_MAX_CELL; NMS "3x3" or "none"."""
     if nms not in ("3x3", "none"):
         raise SimError(f"ORB in the RTL takes NMS 3x3 or none, not {nms!r}")
     if not 1 <= per_cell <= 15:

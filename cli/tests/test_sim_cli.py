@@ -156,7 +156,6 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["--orb", "--cell", "64", "--per-cell", "2", "IMG"], "--orb takes --cell 16 or 32"),
         (["--orb", "--cell", "16", "--per-cell", "2", "--ppc", "2", "IMG"], "--orb needs --ppc 1"),
         (["--orb", "--cell", "16", "--per-cell", "2", "--nms", "region4", "IMG"], "3x3 or none"),
-        (["--orb", "--cell", "16", "--per-cell", "2", "IMG"], "--orb needs --engine cocotb"),
     ],
 )
 def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
@@ -197,24 +196,30 @@ def test_sim_and_compare_with_a_budget(photo: Path, tmp_path: Path, capsys):
     assert "FAST + budget: identical" in out
 
 
-@pytest.mark.slow
-def test_sim_and_compare_orb(tmp_path: Path, capsys):
-    """--orb (the top built with DESCRIPTOR orb, the cocotb engine): the CSV equals `golden
+@pytest.fixture(scope="module")
+def textured(tmp_path_factory) -> Path:
+    """96x72 blurred noise (keypoints inside ORB's border at t = 8), as a PNG file."""
+    path = tmp_path_factory.mktemp("img") / "textured.png"
+    cv2.imwrite(str(path), testimages.blurred_noise(np.random.default_rng(7), 96, 72))
+    return path
+
+
+def test_sim_and_compare_orb(textured: Path, tmp_path: Path, capsys):
+    """--orb (the top built with DESCRIPTOR orb, the fast engine): the CSV equals `golden
     --orb`'s (angles and descriptors), the JSON says orb, and `compare --orb` finds the
     angles' float32 bits and every descriptor bit identical; fastnms.sim.detect_and_compute
     gives golden detect_and_compute's keypoints and descriptors."""
-    path = tmp_path / "crop.png"
-    cv2.imwrite(str(path), testimages.blurred_noise(np.random.default_rng(7), 96, 72))
+    path = textured
     budget = ["--cell", "16", "--per-cell", "3"]
     gold, rtl, out = tmp_path / "g.csv", tmp_path / "r.csv", tmp_path / "r.json"
     assert cli.main(["golden", str(path), "-t", "8", "--orb", *budget, "--csv", str(gold)]) == 0
-    argv = ["sim", str(path), "-t", "8", "--orb", *budget, "--engine", "cocotb"]
+    argv = ["sim", str(path), "-t", "8", "--orb", *budget]
     assert cli.main([*argv, "--csv", str(rtl), "--json", str(out)]) == 0
     assert rtl.read_text() == gold.read_text()
     assert len(gold.read_text().splitlines()) > 3, "too few keypoints for a test"
     assert json.loads(out.read_text())["orb"] is True
     capsys.readouterr()
-    argv = ["compare", str(path), "-t", "8", "--orb", *budget, "--engine", "cocotb"]
+    argv = ["compare", str(path), "-t", "8", "--orb", *budget]
     assert cli.main(argv) == 0
     assert "rtl vs golden model ORB: identical" in capsys.readouterr().out
 
@@ -227,6 +232,23 @@ def test_sim_and_compare_orb(tmp_path: Path, capsys):
     got = [(k.pt, k.angle, k.response, k.size, k.octave) for k in keypoints]
     assert got == [(k.pt, k.angle, k.response, k.size, k.octave) for k in want_kp]
     assert descriptors.dtype == np.uint8 and np.array_equal(descriptors, want_d)
+
+
+@pytest.mark.slow
+def test_orb_engines_agree(textured: Path, tmp_path: Path):
+    """--orb on both engines with idles and stalls: the same records (angles, descriptors)
+    and the same clock counts."""
+    got = {}
+    for engine in ("verilator", "cocotb"):
+        out = tmp_path / f"{engine}.json"
+        argv = ["sim", str(textured), "-t", "8", "--orb", "--cell", "32", "--per-cell", "2"]
+        argv += ["--engine", engine, "--idle", "0.2", "--stall", "0.3", "--seed", "5"]
+        assert cli.main([*argv, "--json", str(out), "--csv", f"{out}.csv"]) == 0
+        summary = json.loads(out.read_text())
+        csv_text = Path(f"{out}.csv").read_text()
+        got[engine] = (csv_text, summary["corners"], summary["cycles"], summary["input_stalls"])
+    assert got["verilator"] == got["cocotb"]
+    assert got["verilator"][1] > 2, "too few keypoints for a test"
 
 
 def test_missing_simulator_is_named(photo: Path, capsys, monkeypatch):

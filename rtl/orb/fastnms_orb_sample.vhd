@@ -91,25 +91,13 @@ architecture rtl of fastnms_orb_sample is
   signal last       : std_logic_vector(1 to LATENCY);
   signal read_bank1 : std_logic;
 
-  -- The bit of pair-lane j at step s sits at shifted(j)(STEPS - 1 - s) once the
-  -- keypoint's last bit is in.
-  function descriptor_of (b : lane_bits_t) return std_logic_vector is
-    variable d : std_logic_vector(255 downto 0);
-  begin
-
-    for j in 0 to PAIR_LANES - 1 loop
-
-      for s in 0 to STEPS - 1 loop
-
-        d(ORB_PAIRS_BY_REACH(j * STEPS + s)) := b(j)(STEPS - 1 - s);
-
-      end loop;
-
-    end loop;
-
-    return d;
-
-  end function descriptor_of;
+  -- The pair-lanes' bits with this clock's shifted in, and the same bits in
+  -- descriptor order: the bit of pair-lane j at step s sits at
+  -- next_bits(j)(STEPS - 1 - s) once the keypoint's last bit is in. (As
+  -- concurrent assignments: GHDL 2.0's synthesis of the same permutation as
+  -- a function's loop lost one bit; measured on its netlist.)
+  signal next_bits : lane_bits_t;
+  signal gathered  : std_logic_vector(255 downto 0);
 
 begin
 
@@ -306,28 +294,34 @@ begin
 
   end generate lane;
 
+  pair_lane : for j in 0 to PAIR_LANES - 1 generate
+
+    next_bits(j) <= shifted(j)(STEPS - 2 downto 0) & bits(j);
+
+    per_step : for s in 0 to STEPS - 1 generate
+      gathered(ORB_PAIRS_BY_REACH(j * STEPS + s)) <= next_bits(j)(STEPS - 1 - s);
+    end generate per_step;
+
+  end generate pair_lane;
+
   -- 5: the comparisons; then the bits shifted in and, at a keypoint's last
   -- step, the descriptor loaded.
   compare : process (clk) is
-
-    variable next_bits : lane_bits_t;
-
   begin
 
     if rising_edge(clk) then
 
       for j in 0 to PAIR_LANES - 1 loop
 
-        bits(j)      <= to_sl(unsigned(pixels(16 * j + 7 downto 16 * j)) <
-                              unsigned(pixels(16 * j + 15 downto 16 * j + 8)));
-        next_bits(j) := shifted(j)(STEPS - 2 downto 0) & bits(j);
+        bits(j) <= to_sl(unsigned(pixels(16 * j + 7 downto 16 * j)) <
+                         unsigned(pixels(16 * j + 15 downto 16 * j + 8)));
 
       end loop;
 
       if valid(5) = '1' then
         shifted <= next_bits;
         if last(5) = '1' then
-          out_descriptor <= descriptor_of(next_bits);
+          out_descriptor <= gathered;
         end if;
       end if;
     end if;

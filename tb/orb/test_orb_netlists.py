@@ -36,14 +36,7 @@ CASES = [
         {"LANES": 8},
         {"TB_COUNT": "20"},
         id="sample",
-        marks=[
-            pytest.mark.slow,
-            pytest.mark.xfail(
-                strict=True,
-                reason="GHDL 2.0's netlist of fastnms_orb_sample differs from the RTL in one "
-                "descriptor bit of the testbench's third keypoint (cause not found yet)",
-            ),
-        ],
+        marks=pytest.mark.slow,
     ),
 ]
 
