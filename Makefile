@@ -18,7 +18,7 @@ DEMO_T   ?= 20
 	fusesoc-sim vivado-ip vivado-bd vivado-bd-needs-board vivado-ooc check-vivado synth bench regmap
 
 help:
-	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a 1920x1080 photograph, writes $(DEMO)/*.png"
+	@echo "make demo       the RTL (simulated) against the golden model and OpenCV on a 1920x1080 photograph, and its ORB descriptors matched to a rotated copy, writes $(DEMO)/*.png"
 	@echo "make test       lint, golden tests, cocotb regression, synthesis checks"
 	@echo "make test-full  the same plus the 'slow' cases"
 	@echo "make sim        cocotb regression only"
@@ -77,7 +77,8 @@ demo: setup
 	  --csv $(DEMO)/paper_sad_region4.csv --png $(DEMO)/paper_sad_region4.png
 	$(VENV)/bin/fastnms compare "$(IMAGE)" -t $(DEMO_T) --score opencv --nms 3x3 \
 	  --cell 64 --per-cell 4 --csv $(DEMO)/opencv_3x3_budget.csv --png $(DEMO)/opencv_3x3_budget.png
-	@echo "wrote $(DEMO)/opencv_3x3.png, $(DEMO)/paper_sad_region4.png and $(DEMO)/opencv_3x3_budget.png (at most 4 per 64x64 cell) (+ .csv): the corners the RTL emitted"
+	$(PY) -m flows.demo.orb_match "$(IMAGE)" $(DEMO)/orb_matches.png -t $(DEMO_T)
+	@echo "wrote $(DEMO)/opencv_3x3.png, $(DEMO)/paper_sad_region4.png and $(DEMO)/opencv_3x3_budget.png (at most 4 per 64x64 cell) (+ .csv): the corners the RTL emitted; $(DEMO)/orb_matches.png: the RTL's ORB matches to a copy rotated 30 degrees"
 
 test: setup lint
 	$(PYTEST) -m "not slow" --durations=60
