@@ -230,6 +230,12 @@ fastnms::gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8
 fastnms::gui_param $core MAX_PER_CELL {Keypoint budget (largest K)} \
     {0: no budget. 1 .. 15: keep at most K records per grid cell (register BUDGET: K and the cell size, 16 .. 256), the best scores; needs NMS 3x3 or none (an elaboration assert says so otherwise). At 15 it costs 26 BRAM18.}
 fastnms::gui_range $core MAX_PER_CELL 0 15
+fastnms::gui_param $core DESCRIPTOR {Descriptor} \
+    {none: corner records of one beat. orb: each keypoint's ORB angle and 256-bit descriptor, equal to OpenCV's, in records of 6 beats (record format 2); needs PPC 1, NMS 3x3 or none and MAX_PER_CELL > 0 (an elaboration assert says so otherwise).}
+fastnms::gui_list $core DESCRIPTOR {none orb}
+fastnms::gui_param $core ORB_MAX_CELL {Largest ORB cell} \
+    {With ORB, the largest cell side of register BUDGET (a larger write is clamped to it); it sizes the rows kept for ORB: each doubling doubles them.}
+fastnms::gui_list $core ORB_MAX_CELL {16 32 64 128 256}
 
 # ---- save -------------------------------------------------------------------
 ipx::create_xgui_files $core
