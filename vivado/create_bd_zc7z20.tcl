@@ -31,6 +31,9 @@
 #                    another frequency.
 #   --score S, --nms N   the IP's SCORE and NMS generics (default opencv, 3x3)
 #   --max-width W, --max-height H   (default 1920, 1080)
+#   --orb            ORB descriptors in the records (DESCRIPTOR orb, with the
+#                    budget MAX_PER_CELL 15 and ORB_MAX_CELL 32; --nms 3x3 or
+#                    none): 6 beats of 8 bytes per keypoint for the DMA
 #   --impl           also run synthesis, implementation and the bitstream,
 #                    reports in DIR/reports, the hardware platform DIR/*.xsa
 #   --jobs N         parallel jobs for --impl (default 4)
@@ -55,7 +58,10 @@ set opts [fastnms::parse_args $argv [dict create \
     --max-width  1920 \
     --max-height 1080 \
     --jobs       4 \
-] {--impl}]
+] {--impl --orb}]
+if {[dict get $opts --orb] && [dict get $opts --nms] ni {3x3 none}} {
+    error "create_bd: --orb needs --nms 3x3 or none (ORB runs behind the budget)"
+}
 set out_dir  [file normalize [dict get $opts --out]]
 set ip_repo  [file normalize [dict get $opts --ip-repo]]
 set board    [dict get $opts --board]
@@ -165,6 +171,13 @@ set_property -dict [list \
     CONFIG.NMS         [dict get $opts --nms] \
     CONFIG.SCORE_VIDEO {false} \
 ] $fastnms
+if {[dict get $opts --orb]} {
+    set_property -dict [list \
+        CONFIG.DESCRIPTOR   {orb} \
+        CONFIG.MAX_PER_CELL {15} \
+        CONFIG.ORB_MAX_CELL {32} \
+    ] $fastnms
+}
 
 # Frames from DDR: MM2S only, 8-bit video stream (tuser = start of frame,
 # tlast = end of line), 64-bit memory side; the realignment engine lets

@@ -405,6 +405,21 @@ def test_create_bd() -> None:
 
 
 @needs_tcl
+def test_create_bd_orb() -> None:
+    """--orb: the IP with ORB descriptors (and the budget they need); refused with a
+    region NMS."""
+    _, run = bd_run("create_bd_orb", ["--board", "none", "--orb"])
+    run.assert_clean()
+    config = cell_config(run, "fastnms")
+    assert (config["CONFIG.DESCRIPTOR"], config["CONFIG.MAX_PER_CELL"]) == ("orb", "15")
+    assert config["CONFIG.ORB_MAX_CELL"] == "32"
+    _, plain = bd_run("create_bd_plain", ["--board", "none"])
+    assert "CONFIG.DESCRIPTOR" not in cell_config(plain, "fastnms")
+    _, refused = bd_run("create_bd_orb_region", ["--board", "none", "--orb", "--nms", "region4"])
+    assert "--orb needs --nms 3x3 or none" in (refused.error or "")
+
+
+@needs_tcl
 def test_create_bd_board_choice() -> None:
     # The newest version by number, whatever the vendor's name.
     parts = "em.avnet.com:zed:part0:1.4 avnet.com:zedboard:part0:1.10 avnet.com:zedboard:part0:1.9"
