@@ -75,11 +75,12 @@ def test_axi_robustness(request, score, nms):
     )
 
 
-# One case in `make test`; the other two (PPC 4, the sad score with `none`) in
-# `make test-full`: the fast engine runs the budget at PPC 4 in `make test`
-# (sim/tests/test_engines.py::test_budget_at_full_hd).
+# All in `make test-full`: in `make test` the fast engine runs the budget through the
+# top at PPC 4 and 1920x1080 (sim/tests/test_engines.py::test_budget_at_full_hd), the
+# command line at PPC 1 on both engines (cli/tests/test_sim_cli.py), and ORB's test here
+# runs it through the top under cocotb (test_axi_orb).
 BUDGET_CASES = [
-    ("opencv", "3x3", 1, 15),
+    pytest.param("opencv", "3x3", 1, 15, marks=pytest.mark.slow, id="opencv-3x3-ppc1-k15"),
     pytest.param("sad", "none", 1, 4, marks=pytest.mark.slow, id="sad-none-ppc1-k4"),
     pytest.param("opencv", "3x3", 4, 15, marks=pytest.mark.slow, id="opencv-3x3-ppc4-k15"),
 ]
@@ -263,7 +264,12 @@ def test_axi_orb(request, tmp_path, score, nms):
         "axi_orb_tb",
         {**ORB_SMALL, "SCORE": score, "NMS": nms},
         name=request.node.nodeid,
-        env={"TB_IDLE": "0.1", "TB_STALL": "0.2", "TB_OUT": str(words_file)},
+        env={
+            "TB_IDLE": "0.1",
+            "TB_STALL": "0.2",
+            "TB_OUT": str(words_file),
+            "TB_FULL": "1" if nms == "none" else "0",
+        },
     )
     words = [w for frame in json.loads(words_file.read_text()) for w in frame]
     frames = decode_records(words)
