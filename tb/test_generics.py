@@ -37,6 +37,7 @@ ILLEGAL = {
     "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),
     "fastnms_corner_pack": ({"X_BITS": 30, "Y_BITS": 30}, "X_BITS + Y_BITS + SCORE_BITS + 2"),
     "fastnms_record_beats": ({"BEATS": 17}, "BEATS must be 1 .. 16"),
+    "fastnms_record_output": ({"FIFO_DEPTH": 4}, "FIFO_DEPTH must be at least 8"),
     "fastnms_video_check": ({"MAX_WIDTH": 6}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     "fastnms_axi": ({"NMS": "5x5"}, "NMS must be"),
 }
@@ -59,6 +60,8 @@ MORE = [
     ("fastnms_axi_regs", {"MAX_PER_CELL": 16}, "MAX_PER_CELL must be 0 .. 15"),
     ("fastnms_axi_regs", {"DESCRIPTOR": "sift"}, 'DESCRIPTOR must be "none" or "orb"'),
     ("fastnms_axi_regs", {"ORB_MAX_CELL": 8}, "ORB_MAX_CELL must be at least 16"),
+    ("fastnms_record_output", {"DESCRIPTOR": "sift"}, 'DESCRIPTOR must be "none" or "orb"'),
+    ("fastnms_record_output", {"X_BITS": 17}, "X_BITS, Y_BITS and SCORE_BITS must fit"),
     ("fastnms_axi", {"DESCRIPTOR": "orb"}, 'DESCRIPTOR must be "none" or "orb"; "orb" needs PPC 1'),
     ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),

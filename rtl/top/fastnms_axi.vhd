@@ -1,7 +1,7 @@
 -- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
 -- out, optional per-pixel score video out, AXI4-Lite control. See docs/fastnms_axi.md.
 --
---   s_axis_video ─► skid ─► gate ─► skid ─► fastnms_core ─► pack ─► FIFO ─► m_axis_corners
+--   s_axis_video ─► skid ─► gate ─► skid ─► fastnms_core ─► records ─► m_axis_corners
 --                                     │          │  └ tap ─► skid ─► (sat) ─► m_axis_score
 --                           check ◄──┘
 --                             │   s_axi_ctrl ─► regs ─► interrupt
@@ -17,7 +17,7 @@
 --
 -- DESCRIPTOR "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0): each
 -- keypoint's record carries its ORB angle and descriptor (record format 2:
--- REC_ORB_BEATS beats, fastnms_record_beats); ORB_MAX_CELL is the largest
+-- REC_ORB_BEATS beats, fastnms_record_output); ORB_MAX_CELL is the largest
 -- BUDGET.CELL (it sizes the core's ORB rows).
 --
 -- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
@@ -199,39 +199,6 @@ architecture rtl of fastnms_axi is
   constant X_BITS     : positive := clog2(MAX_WIDTH);
   constant Y_BITS     : positive := bits_for(MAX_HEIGHT);
   constant SCORE_BITS : positive := score_width(SCORE);
-  constant ORB        : boolean  := DESCRIPTOR = "orb";
-
-  -- ORB's payload: the angle (32 bits) and the descriptor (256).
-  function orb_bits return natural is
-  begin
-
-    if ORB then
-      return 288;
-    end if;
-
-    return 0;
-
-  end function orb_bits;
-
-  function record_beats return positive is
-  begin
-
-    if ORB then
-      return REC_ORB_BEATS;
-    end if;
-
-    return 1;
-
-  end function record_beats;
-
-  constant PAYLOAD_BITS : natural  := orb_bits;
-  constant EXTRA_BITS   : positive := maximum(1, PAYLOAD_BITS);
-  constant FIELD_BITS   : positive := X_BITS + Y_BITS + SCORE_BITS;
-  -- A record from the packer: kind (2 bits, see fastnms_corner_pack), lost,
-  -- x, y, score, extra; in the FIFO: overflow, kind, x, y, score, payload.
-  constant PACKED_BITS : positive := 3 + FIELD_BITS + EXTRA_BITS;
-  constant FIFO_BITS   : positive := 3 + FIELD_BITS + PAYLOAD_BITS;
-  constant BEATS       : positive := record_beats;
 
   -- Reset: the synchroniser chain, then the pipeline's reset (also held
   -- during a soft reset).
@@ -288,49 +255,21 @@ architecture rtl of fastnms_axi is
   signal c_eol      : std_logic;
 
   -- Core output.
-  signal k_valid    : std_logic;
-  signal k_ready    : std_logic;
-  signal k_x        : unsigned(X_BITS - 1 downto 0);
-  signal k_y        : unsigned(Y_BITS - 1 downto 0);
-  signal k_score    : unsigned(SCORE_BITS - 1 downto 0);
-  signal k_eof      : std_logic;
-  signal k_angle    : std_logic_vector(31 downto 0);
-  signal k_desc     : std_logic_vector(255 downto 0);
-  signal k_extra    : std_logic_vector(EXTRA_BITS - 1 downto 0);
-  signal open_frame : std_logic;
-  signal orb_drop   : std_logic; -- the core dropped a keypoint (ORB, K = 0)
-  signal orb_lost   : std_logic; -- ... in the frame the core is sending
-  signal drop_owed  : std_logic; -- a drop to count on the next clock
+  signal k_valid  : std_logic;
+  signal k_ready  : std_logic;
+  signal k_x      : unsigned(X_BITS - 1 downto 0);
+  signal k_y      : unsigned(Y_BITS - 1 downto 0);
+  signal k_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal k_eof    : std_logic;
+  signal k_angle  : std_logic_vector(31 downto 0);
+  signal k_desc   : std_logic_vector(255 downto 0);
+  signal orb_drop : std_logic; -- the core dropped a keypoint (ORB, K = 0)
 
-  -- Records: packed, then (LIVE: dropped if they do not fit) the FIFO.
-  signal p_valid : std_logic;
-  signal p_ready : std_logic;
-  signal p_data  : std_logic_vector(PACKED_BITS - 1 downto 0);
-  signal p_last  : std_logic;                     -- a frame's last record (LAST, EMPTY or ABORTED)
-  signal p_kind  : std_logic_vector(1 downto 0);
-  signal p_lost  : std_logic;
-  signal p_over  : std_logic;
-  signal q_valid : std_logic;
-  signal q_ready : std_logic;
-  signal q_spare : std_logic;
-  signal q_fits  : std_logic;
-  signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
-  signal drop    : std_logic;
-  signal lost    : std_logic;                     -- records dropped since the last LAST record stored
-  signal f_valid : std_logic;
-  signal f_ready : std_logic;
-  signal f_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
-  signal f_over  : std_logic;
-  signal f_busy  : std_logic;
-  signal f_kind  : std_logic_vector(1 downto 0);
-  signal f_x     : std_logic_vector(X_BITS - 1 downto 0);
-  signal f_y     : std_logic_vector(Y_BITS - 1 downto 0);
-  signal f_score : std_logic_vector(SCORE_BITS - 1 downto 0);
-  signal f_empty : std_logic;
-  signal f_last  : std_logic;
-  signal f_word  : std_logic_vector(63 downto 0); -- beat 0
-  signal f_beats : std_logic_vector(BEATS * 64 - 1 downto 0);
-  signal b_valid : std_logic;
+  -- Records.
+  signal open_frame : std_logic;
+  signal r_busy     : std_logic;
+  signal r_valid    : std_logic;
+  signal r_overflow : std_logic;
 
   -- Score tap.
   signal t_valid : std_logic;
@@ -346,7 +285,6 @@ architecture rtl of fastnms_axi is
   signal err_eol_late    : std_logic;
   signal err_sof_missing : std_logic;
   signal err_sof_early   : std_logic;
-  signal overflow        : std_logic;
   signal dropped         : std_logic;
   signal stalled         : std_logic;
   signal out_record      : std_logic;
@@ -505,7 +443,7 @@ begin
       evt_eol_late    => err_eol_late,
       evt_sof_missing => err_sof_missing,
       evt_sof_early   => err_sof_early,
-      evt_overflow    => overflow,
+      evt_overflow    => r_overflow,
       evt_dropped     => dropped,
       evt_stall       => stalled,
       out_record      => out_record,
@@ -662,188 +600,43 @@ begin
 
   -- ---- corner records ----------------------------------------------------------
 
-  -- A keypoint dropped by the core's ORB stage (K = 0) belongs to the frame
-  -- the core is sending: it is flagged on that frame's last record.
-  orb_frame : process (aclk) is
-  begin
-
-    if rising_edge(aclk) then
-      if k_valid = '1' and k_ready = '1' and k_eof = '1' then
-        orb_lost <= '0';
-      elsif orb_drop = '1' then
-        orb_lost <= '1';
-      end if;
-
-      if pipe_rst = '1' then
-        orb_lost <= '0';
-      end if;
-    end if;
-
-  end process orb_frame;
-
-  with_payload : if ORB generate
-    k_extra <= k_angle & k_desc;
-  end generate with_payload;
-
-  without_payload : if not ORB generate
-    k_extra <= "0";
-  end generate without_payload;
-
-  pack : entity work.fastnms_corner_pack
+  records : entity work.fastnms_record_output
     generic map (
       X_BITS     => X_BITS,
       Y_BITS     => Y_BITS,
       SCORE_BITS => SCORE_BITS,
-      EXTRA_BITS => EXTRA_BITS
+      FIFO_DEPTH => CORNER_FIFO_DEPTH,
+      DESCRIPTOR => DESCRIPTOR
     )
     port map (
-      clk        => aclk,
-      rst        => rst,
-      abort      => soft_busy,
-      in_valid   => k_valid,
-      in_ready   => k_ready,
-      in_x       => k_x,
-      in_y       => k_y,
-      in_score   => k_score,
-      in_extra   => k_extra,
-      in_eof     => k_eof,
-      in_lost    => orb_lost or orb_drop,
-      out_valid  => p_valid,
-      out_ready  => p_ready,
-      out_data   => p_data,
-      open_frame => open_frame
-    );
-
-  -- LIVE = 0: every record waits for room. LIVE = 1: the packer is never
-  -- stalled; a record that does not fit is dropped. A frame's last record
-  -- needs in_ready, any other record in_spare (room for it and for a last
-  -- record whenever it comes), so the last record of a frame whose records
-  -- were dropped still finds a word unless that frame's last record came
-  -- after another frame's had taken the spare word; it carries OVERFLOW for
-  -- every record dropped since the last LAST record stored, and for the
-  -- keypoints the core's ORB stage dropped in its frame (p_lost).
-  p_kind  <= p_data(PACKED_BITS - 1 downto PACKED_BITS - 2);
-  p_lost  <= p_data(PACKED_BITS - 3);
-  p_last  <= p_kind(1) or p_kind(0);
-  q_fits  <= q_ready when p_last = '1' else
-             q_spare;
-  p_ready <= '1' when live = '1' else
-             q_ready;
-  q_valid <= p_valid and (q_fits or not live);
-  drop    <= p_valid and live and not q_fits;
-  p_over  <= p_last and (lost or drop or p_lost);
-
-  fifo_in_payload : if ORB generate
-    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto 0);
-  end generate fifo_in_payload;
-
-  fifo_in_fields : if not ORB generate
-    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto EXTRA_BITS);
-  end generate fifo_in_fields;
-
-  drops : process (aclk) is
-  begin
-
-    if rising_edge(aclk) then
-      if q_valid = '1' and q_ready = '1' and p_last = '1' then
-        lost <= '0';
-      end if;
-      if drop = '1' then
-        lost <= '1';
-      end if;
-      -- One count per clock: a second drop in the same clock (the core's
-      -- ORB stage and the FIFO) is counted on the next. (Pack drops with ORB
-      -- are a keypoint's sampling time apart, so one owed count is enough.)
-      dropped   <= drop or orb_drop or drop_owed;
-      drop_owed <= (drop and orb_drop) or (drop_owed and (drop or orb_drop));
-
-      if rst = '1' then
-        lost      <= '0';
-        dropped   <= '0';
-        drop_owed <= '0';
-      end if;
-    end if;
-
-  end process drops;
-
-  fifo : entity work.fastnms_fifo
-    generic map (
-      DEPTH => CORNER_FIFO_DEPTH,
-      WIDTH => FIFO_BITS
-    )
-    port map (
-      clk       => aclk,
-      rst       => rst,
-      in_valid  => q_valid,
-      in_ready  => q_ready,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => q_spare,
-      in_data   => q_data,
-      out_valid => f_valid,
-      out_ready => f_ready,
-      out_data  => f_data,
-      busy      => f_busy
-    );
-
-  f_over  <= f_data(FIFO_BITS - 1);
-  f_kind  <= f_data(FIFO_BITS - 2 downto FIFO_BITS - 3);
-  f_empty <= f_kind(1) and f_kind(0);
-  f_last  <= f_kind(1) or f_kind(0);
-
-  f_x     <= f_data(PAYLOAD_BITS + FIELD_BITS - 1 downto PAYLOAD_BITS + Y_BITS + SCORE_BITS);
-  f_y     <= f_data(PAYLOAD_BITS + Y_BITS + SCORE_BITS - 1 downto PAYLOAD_BITS + SCORE_BITS);
-  f_score <= f_data(PAYLOAD_BITS + SCORE_BITS - 1 downto PAYLOAD_BITS);
-
-  record_out : process (all) is
-  begin
-
-    f_word                                                      <= (others => '0');
-    f_word(REC_X_LSB + X_BITS - 1 downto REC_X_LSB)             <= f_x;
-    f_word(REC_Y_LSB + Y_BITS - 1 downto REC_Y_LSB)             <= f_y;
-    f_word(REC_SCORE_LSB + SCORE_BITS - 1 downto REC_SCORE_LSB) <= f_score;
-    f_word(REC_EMPTY)                                           <= f_empty;
-    f_word(REC_LAST)                                            <= f_last;
-    f_word(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
-    f_word(REC_OVERFLOW)                                        <= f_over;
-    f_word(REC_ORB)                                             <= to_sl(ORB) and not f_empty;
-
-  end process record_out;
-
-  -- Beat 1: the angle in bits 31:0; beats 2 .. 5: the descriptor, byte 0
-  -- (pairs 0 .. 7) in bits 7:0 of beat 2.
-
-  beats_payload : if ORB generate
-    f_beats <= f_data(255 downto 0) & x"00000000" & f_data(287 downto 256) & f_word;
-  end generate beats_payload;
-
-  beats_word : if not ORB generate
-    f_beats <= f_word;
-  end generate beats_word;
-
-  serializer : entity work.fastnms_record_beats
-    generic map (
-      BEATS => BEATS
-    )
-    port map (
-      clk       => aclk,
-      rst       => rst,
-      in_valid  => f_valid,
-      in_ready  => f_ready,
-      in_data   => f_beats,
-      in_single => f_empty,
-      in_last   => f_last,
-      out_valid => b_valid,
-      out_ready => m_axis_corners_tready and ports_on,
-      out_data  => m_axis_corners_tdata,
-      out_last  => m_axis_corners_tlast
+      clk           => aclk,
+      rst           => rst,
+      pipe_rst      => pipe_rst,
+      abort         => soft_busy,
+      live          => live,
+      in_valid      => k_valid,
+      in_ready      => k_ready,
+      in_x          => k_x,
+      in_y          => k_y,
+      in_score      => k_score,
+      in_eof        => k_eof,
+      in_angle      => k_angle,
+      in_descriptor => k_desc,
+      in_dropped    => orb_drop,
+      out_valid     => r_valid,
+      out_ready     => m_axis_corners_tready and ports_on,
+      out_data      => m_axis_corners_tdata,
+      out_last      => m_axis_corners_tlast,
+      open_frame    => open_frame,
+      busy          => r_busy,
+      overflow      => r_overflow,
+      dropped       => dropped,
+      sent_record   => out_record,
+      sent_last     => out_last
     );
 
   m_axis_corners_tkeep  <= (others => '1');
-  m_axis_corners_tvalid <= b_valid and ports_on;
-
-  out_record <= f_valid and f_ready and not f_empty;
-  out_last   <= f_valid and f_ready and f_last;
+  m_axis_corners_tvalid <= r_valid and ports_on;
 
   -- ---- status ----------------------------------------------------------------------
 
@@ -851,9 +644,8 @@ begin
   begin
 
     if rising_edge(aclk) then
-      busy     <= in_frame or open_frame or f_busy;
-      overflow <= (k_valid and not k_ready and not soft_busy) or drop;
-      stalled  <= s_axis_video_tvalid and not v_tready and ports_on;
+      busy    <= in_frame or r_busy;
+      stalled <= s_axis_video_tvalid and not v_tready and ports_on;
     end if;
 
   end process status;

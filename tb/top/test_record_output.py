@@ -1,0 +1,22 @@
+"""pytest entry: fastnms_record_output under GHDL, without and with the ORB payload
+(record format 2), at the smallest FIFO and one that is not a power of two."""
+
+import pytest
+
+from tb.harness import run_cocotb
+
+CASES = [
+    pytest.param(
+        {"X_BITS": 7, "Y_BITS": 6, "SCORE_BITS": 12, "FIFO_DEPTH": 8, "DESCRIPTOR": "none"},
+        id="none-fifo8",
+    ),
+    pytest.param(
+        {"X_BITS": 11, "Y_BITS": 11, "SCORE_BITS": 8, "FIFO_DEPTH": 13, "DESCRIPTOR": "orb"},
+        id="orb-fifo13",
+    ),
+]
+
+
+@pytest.mark.parametrize("generics", CASES)
+def test_record_output(request, generics):
+    run_cocotb("fastnms_record_output", "record_output_tb", generics, name=request.node.nodeid)
