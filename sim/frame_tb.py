@@ -73,6 +73,7 @@ class Run:
         self.last_record = [0] * len(images)
         self.stalls = [0] * len(images)
         self.words: list[list[int]] = [[] for _ in images]
+        self.word_clocks: list[list[int]] = [[] for _ in images]
         self.first_line_seen = [Event() for _ in images]
         self.done = Event()
 
@@ -100,6 +101,7 @@ class Run:
                     self.stalls[self.in_frame] += 1
             if dut.m_axis_corners_tvalid.value == 1 and dut.m_axis_corners_tready.value == 1:
                 self.words[self.out_frame].append(int(dut.m_axis_corners_tdata.value))
+                self.word_clocks[self.out_frame].append(self.cycle)
                 if dut.m_axis_corners_tlast.value == 1:
                     self.last_record[self.out_frame] = self.cycle
                     self.out_frame += 1
@@ -183,6 +185,7 @@ async def run_frames(dut):
             "last_pixel": run.last_pixel[i],
             "last_record": run.last_record[i],
             "words": run.words[i],
+            "word_clocks": run.word_clocks[i],
             "input_stalls": run.stalls[i],
         }
         for i in range(len(images))

@@ -65,6 +65,8 @@ class FrameResult:
     first_pixel: int
     last_pixel: int
     last_record: int
+    # The clock of each word of `words` (its handshake), on the same origin.
+    word_clocks: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     # With ORB (record format 2), per record in `records`' order: the angle's float32
     # bits and the 32 descriptor bytes; empty otherwise.
     angle_bits: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
@@ -207,6 +209,7 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
                 first_pixel=raw.first_pixel,
                 last_pixel=raw.last_pixel,
                 last_record=raw.last_record,
+                word_clocks=raw.word_clocks,
                 angle_bits=angle_bits,
                 descriptors=descriptors,
             )
@@ -311,6 +314,7 @@ def _run_cocotb(frames, generics, timing, progress, budget) -> SimResult:
             f["last_record"],
             np.array(f["words"], dtype=np.uint64),
             f["input_stalls"],
+            np.array(f["word_clocks"], dtype=np.int64),
         )
         for f in result["frames"]
     ]

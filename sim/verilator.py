@@ -70,6 +70,7 @@ class RawFrame:
     last_record: int
     words: np.ndarray  # uint64 record words in output order
     input_stalls: int
+    word_clocks: np.ndarray  # int64: the clock of each word's handshake
 
 
 @dataclass
@@ -242,7 +243,8 @@ def run(
         out = proc.stdout.read()
         if proc.wait() != 0:
             raise EngineError("; ".join(errors) or f"{exe.name} exited with {proc.returncode}")
-        words = np.fromfile(records, dtype="<u8")
+        beats = np.fromfile(records, dtype="<u8").reshape(-1, 2)
+        words, clocks = beats[:, 0], beats[:, 1].astype(np.int64)
     parsed: list[RawFrame] = []
     at = 0
     done = None
@@ -250,7 +252,16 @@ def run(
         parts = line.split()
         if parts[0] == "frame":
             first, last_pixel, last_record, count, stalls = (int(v) for v in parts[2:7])
-            parsed.append(RawFrame(first, last_pixel, last_record, words[at : at + count], stalls))
+            parsed.append(
+                RawFrame(
+                    first,
+                    last_pixel,
+                    last_record,
+                    words[at : at + count],
+                    stalls,
+                    clocks[at : at + count],
+                )
+            )
             at += count
         elif parts[0] == "done":
             done = [int(v) for v in parts[1:5]]

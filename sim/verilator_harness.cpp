@@ -13,7 +13,8 @@
 // PIXELS: the frames' pixels, raster order, one byte each, frame after frame;
 // they go in as beats of PPC pixels (the build's generic, `ppc` in the job;
 // default 1), pixel 0 of a beat in the low byte, as UG934 packs video.
-// RECORDS: written with every corner record (tdata, 64-bit little-endian).
+// RECORDS: written with every beat of the corner records: tdata, then the clock
+// of its handshake (two 64-bit little-endian words).
 // stdout: one "frame" line per frame and one "done" line (see sim/verilator.py);
 // stderr: "progress PIXELS_IN PIXELS" about once a second, and errors.
 //
@@ -342,7 +343,8 @@ int main(int argc, char** argv) {
     // ---- corner records out ---------------------------------------------------
     if (s.record) {
       if (out_frame == frames.size()) fail("a corner record after the last frame's");
-      std::fwrite(&s.record_word, sizeof s.record_word, 1, records_out);
+      const uint64_t beat[2] = {s.record_word, cycle};
+      std::fwrite(beat, sizeof beat[0], 2, records_out);
       FrameResult& r = results[out_frame];
       ++r.records;
       progress = true;

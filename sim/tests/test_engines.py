@@ -50,6 +50,10 @@ def assert_same_run(a: SimResult, b: SimResult) -> None:
     for fa, fb in zip(a.frames, b.frames, strict=True):
         assert np.array_equal(fa.records, fb.records)
         assert (fa.cycles, fa.input_stalls) == (fb.cycles, fb.input_stalls)
+        # Every record beat on the same clock (each engine counts from its own origin).
+        assert np.array_equal(
+            fa.word_clocks - a.frames[0].first_pixel, fb.word_clocks - b.frames[0].first_pixel
+        )
 
 
 def emitted(words: np.ndarray) -> list[tuple[int, int, int]]:
