@@ -215,7 +215,10 @@ REASONS = {
     ),
     "orb-fmax": (
         "A place and route that did not fit its device or did not finish gives no Fmax; "
-        "the row says which resource or how long."
+        "the row says which resource or how long. The ECP5's LUT RAM holds 16 words "
+        "per cell, so yosys puts into DP16KD block RAM memories that are LUT RAM on the "
+        "xc7 (RAM64M): the ECP5 needs more block RAMs than the xc7's BRAM18 count, and "
+        "the LFE5U-85F is the largest ECP5."
     ),
     "ppc": (
         "Back to back, every configuration takes W x H clocks per frame whatever the "
@@ -258,8 +261,9 @@ How to read the figures:
   context (no I/O buffers, clock on general routing, port paths not timed),
   one fixed seed. The ORB rows (issue 36) are placed on the LFE5U-85F, the
   largest ECP5, as ORB needs more block RAM than the 45F has; a design
-  that does not fit its device is shown as such, with the resource. It is a measured figure for that device, not a prediction
-  for a Zynq-7000 (the paper's 134 MHz) or an UltraScale+ (AMD's 300 MHz).
+  that does not fit its device is shown as such, with the resource. It is
+  a measured figure for that device, not a prediction for a Zynq-7000 (the
+  paper's 134 MHz) or an UltraScale+ (AMD's 300 MHz).
 - **The paper** (Brenot, Fillatreau, Piat, "FPGA based accelerator for
   visual features detection", ECMSM 2015): Table I, Vivado on an
   xc7z020-1, 1 pixel per clock, for its accelerator as published. **AMD**:
