@@ -204,8 +204,9 @@ REASONS = {
     ),
     "orb-lut": (
         "The descriptor engine (the float32 angle unit, cos/sin, the rotation's table and "
-        "eight sampling lanes) and the two row buffers' column multiplexers dominate; "
-        "the block rows above give each part."
+        "eight sampling lanes) takes most of them, the two row buffers' column "
+        "multiplexers most of the rest (each block alone: docs/orb_rtl.md, CHANGELOG). "
+        "LUT here counts SRL and LUT RAM, as Vivado's *Slice LUTs* do."
     ),
     "orb-levels": (
         "The float32 units' carry chains are not split yet (the rounding increment into "
