@@ -25,7 +25,7 @@ help:
 	@echo "make lint       vsg (VHDL) and ruff (Python)"
 	@echo "make synth-report  LUT/FF/BRAM and logic levels of the detector and core (yosys, xc7)"
 	@echo "make synth      top and blocks, 3 configurations at 1920x1080, and the ORB top with its ORB stage and budget: yosys xc7 figures, ECP5 Fmax (nextpnr; the ORB rows on an LFE5U-85F) -> build/synth/summary.json, docs/results.md"
-	@echo "make bench      the AXI top in all 8 configurations on 3 photographs at 1920x1080 (fast engine, cocotb engine timed beside it), the ORB top at 2 budgets (every record against the golden), region-NMS memory, software timings -> build/bench/summary.json, docs/results.md (about 6 min)"
+	@echo "make bench      the AXI top in all 8 configurations on 3 photographs at 1920x1080 (fast engine, cocotb engine timed beside it), the ORB top at 2 budgets (every record against the golden), region-NMS memory, software timings -> build/bench/summary.json, docs/results.md (about 9 min)"
 	@echo "make regmap     regenerate the register map files from rtl/top/fastnms_regs.toml"
 	@echo "make fusesoc-sim  FuseSoC + GHDL smoke test of fastnms.core"
 	@echo "make vivado-ip    package the Vivado IP into build/vivado/ip (needs Vivado)"
