@@ -106,3 +106,36 @@ def test_orb_rtl_bench(orb_frames):
     lines = orb_rtl_lines(result, W, H)
     assert lines[0] == "### ORB descriptors in the top"
     assert sum(line.startswith("| 4 per 16x16") for line in lines) == 1
+
+
+def test_only_orb_merges_into_the_summary(monkeypatch, tmp_path):
+    """`--only orb` replaces the ORB rows of an earlier summary of the same frames and
+    re-renders the section from it; without one it writes the ORB rows alone and leaves
+    the results file as it is; other frames are refused (no simulation: parts faked)."""
+    import json
+
+    from flows.bench import bench
+
+    orb_rtl = {"generics": {}, "build_seconds": None, "rows": []}
+    monkeypatch.setattr(bench, "orb_part", lambda images, args: orb_rtl)
+    monkeypatch.setattr(
+        bench, "bench_frames", lambda w, h, n: (np.zeros((n, h, w), np.uint8), ["a.png"] * n)
+    )
+    monkeypatch.setattr(bench.verilator, "missing_tools", lambda: [])
+    rendered = []
+    results = bench.REPO / "docs" / "results.md"  # not written: update_bench is faked
+    monkeypatch.setattr(bench.report, "update_bench", lambda s: rendered.append(s) or results)
+    out = tmp_path / "summary.json"
+    args = ["--only", "orb", "--width", "64", "--height", "32", "--out", str(out)]
+    bench.main(args)
+    alone = json.loads(out.read_text())
+    assert alone["orb_rtl"] == orb_rtl and "simulation" not in alone and rendered == []
+    frames = {"count": 3, "width": 64, "height": 32, "threshold": 20}
+    out.write_text(json.dumps({"frames": frames, "simulation": [], "phases": {"builds": 1.0}}))
+    bench.main(args)
+    merged = json.loads(out.read_text())
+    assert merged["orb_rtl"] == orb_rtl and merged["simulation"] == []
+    assert set(merged["phases"]) == {"builds", "orb_rtl"} and len(rendered) == 1
+    out.write_text(json.dumps({"frames": {**frames, "width": 128}, "simulation": []}))
+    with pytest.raises(SystemExit, match="other frames"):
+        bench.main(args)
