@@ -128,7 +128,7 @@ def entries(
     }
     entity, generics = nms_block(score, nms, size)
     rows["nms"] = Entry(f"{entity}-{base}", entity, score, nms, generics)
-    return [rows[e] for e in entities if e != "blocks"]
+    return [rows[e] for e in entities if e not in ("blocks", "orb")]  # added by run()
 
 
 def ppc_entries(score: str, nms: str) -> list[Entry]:

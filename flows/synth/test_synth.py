@@ -369,6 +369,10 @@ def test_orb_entries_have_the_cores_generics():
         "MAX_PER_CELL": 4,
     }
     assert all(r.orb_table and r.ecp5_device == "85k" for r in rows.values())
+    # `make synth`'s default entities: the configurations' rows, then the ORB rows once.
+    per_config = synth_summary.entries("opencv", "3x3", 1920, 1080, synth_summary.ENTITIES)
+    assert [r.entity for r in per_config][:2] == ["fastnms_axi", "fastnms_core"]
+    assert not any(r.orb_table for r in per_config)
 
 
 def test_orb_rows_in_the_flow(monkeypatch, tmp_path):
@@ -392,6 +396,7 @@ def test_orb_rows_in_the_flow(monkeypatch, tmp_path):
             "bram18_equiv": 2,
             "dsp": 1,
             "logic_levels": 3,
+            "carry4": 4,
             "xc7_seconds": 1,
         }
 
@@ -419,6 +424,18 @@ def test_orb_rows_in_the_flow(monkeypatch, tmp_path):
     assert summary[0]["ecp5_result"].startswith("does not fit")
     assert info["distinct_syntheses"] == 3 and info["ecp5_runs"] == 1
     assert "85F" in info["ecp5_orb_device"]
+    # `make synth`'s default entities with a configuration, rendered into the section.
+    from flows.report import report
+
+    summary, info = synth_summary.run(
+        [("opencv", "3x3")], ecp5_for="none", root=tmp_path, log=lambda s: None
+    )
+    orb = [r["config"] for r in summary if r["orb_table"]]
+    assert orb == ["opencv-3x3-orb-1920", "fastnms_orb_stage-opencv-1920", orb[2]]
+    assert summary[0]["config"] == "opencv-3x3-1920"
+    text = report.synth_section(summary, info)
+    assert "### ORB descriptors (issue 36)" in text and "| ORB + budget |" in text
+    assert "`opencv-3x3-orb-1920`" not in text.split("### Side by side")[1].split("###")[1]
 
 
 def test_nextpnr_does_not_fit_or_timeout(monkeypatch, tmp_path):
