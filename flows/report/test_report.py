@@ -310,3 +310,141 @@ def test_ppc_fmax_targets_over_seeds():
     assert not fmax["met"] and "median of 4 seeds: 135 vs 160 MHz" in fmax["measured"], fmax
     uhd = targets["ppc-uhd60"]
     assert not uhd["met"] and "lowest of 4 seeds: 120 MHz" in uhd["measured"], uhd
+
+
+def orb_summary(fits: bool = True) -> list[dict]:
+    """The ORB rows as `make synth` writes them (figures made up here): the top, the
+    stage and the budget; the top placed on the 85F (or not fitting it)."""
+
+    def row(config: str, entity: str, lut: int, bram: int, dsp: int, levels: int) -> dict:
+        return {
+            "config": config,
+            "entity": entity,
+            "score": "opencv",
+            "nms": "orb",
+            "generics": {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080},
+            "ppc": 1,
+            "ppc_table": False,
+            "orb_table": True,
+            "lut": lut,
+            "srl": 100,
+            "lutram_luts": 400,
+            "ff": 2 * lut,
+            "carry4": 10,
+            "bram18_equiv": bram,
+            "dsp": dsp,
+            "logic_levels": levels,
+            "ecp5_fmax_mhz": None,
+        }
+
+    top = row("opencv-3x3-orb-1920", "fastnms_axi", 13000, 110, 21, 13)
+    top["generics"] = {
+        "MAX_WIDTH": 1920,
+        "MAX_HEIGHT": 1080,
+        "SCORE": "opencv",
+        "NMS": "3x3",
+        "MAX_PER_CELL": 4,
+        "DESCRIPTOR": "orb",
+        "ORB_MAX_CELL": 16,
+    }
+    if fits:
+        top["ecp5_fmax_mhz"] = 130.0
+        top["ecp5"] = {
+            "device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
+            "device_key": "85k",
+            "nextpnr_seconds": 900.0,
+            "yosys_seconds": 300.0,
+        }
+    else:
+        top["ecp5_result"] = "does not fit LFE5U-85F: DP16KD 300/208"
+        top["ecp5"] = {
+            "device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
+            "device_key": "85k",
+            "does_not_fit": top["ecp5_result"],
+            "nextpnr_seconds": 2.0,
+            "yosys_seconds": 300.0,
+        }
+    stage = row("fastnms_orb_stage-opencv-1920", "fastnms_orb_stage", 9000, 90, 21, 13)
+    budget = row("fastnms_cell_budget-opencv-k4-1920", "fastnms_cell_budget", 2000, 4, 0, 5)
+    return [top, stage, budget]
+
+
+def test_orb_targets():
+    """Issue 36's targets from the ORB rows: ORB + budget summed (LUT with SRL and LUT
+    RAM), the top, Fmax on the 85F, logic levels; a miss is 'not reached'."""
+    targets = report.orb_targets(orb_summary())
+    by = {(t["id"], t["target"].split(":")[0], t["on"]): t for t in targets}
+    on = "`fastnms_orb_stage-opencv-1920` + `fastnms_cell_budget-opencv-k4-1920`"
+    lut = by[("orb-lut", "ORB + budget", on)]
+    assert lut["measured"] == "12 000 LUT" and lut["met"] and lut["margin"] == "at the limit"
+    bram = by[("orb-bram", "ORB + budget", on)]
+    assert bram["measured"] == "94 BRAM18" and bram["met"]
+    assert by[("orb-dsp", "ORB + budget", on)]["met"]  # 21 <= 32
+    top_lut = by[("orb-lut", "the AXI top", "`opencv-3x3-orb-1920`")]
+    assert top_lut["measured"] == "13 500 LUT" and top_lut["met"]
+    top_bram = by[("orb-bram", "the AXI top", "`opencv-3x3-orb-1920`")]
+    assert not top_bram["met"] and top_bram["margin"] == "5 BRAM18 over (5 %)"
+    fmax = [t for t in targets if t["id"] == "orb-fmax"]
+    assert len(fmax) == 1 and fmax[0]["met"] and "LFE5U-85F" in fmax[0]["on"]
+    levels = [t for t in targets if t["id"] == "orb-levels"]
+    assert [t["met"] for t in levels] == [False, False, False]
+    assert levels[0]["margin"] == "9 level(s) over"
+    lines = report.target_lines(targets)
+    assert any("**not reached**" in line for line in lines)
+    assert any(line.startswith("- *orb-levels*") for line in lines)
+
+
+def test_orb_synth_section():
+    """The synthesis section with the ORB rows: their own table (ORB + budget summed),
+    the anchors with their sources, the targets; a top that does not fit its device says
+    so in every table and its Fmax target is 'not measured'; the ORB rows stay out of
+    the paper/AMD comparison and its targets."""
+    rows = orb_summary(fits=False)
+    info = {
+        "ecp5_orb_device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
+        "ecp5_timeout_seconds": 3600,
+    }
+    text = report.synth_section(rows, info)
+    assert "### ORB descriptors (issue 36)" in text
+    assert (
+        "| ORB + budget | the two rows above, summed | 12 000 | 22 000 | 94 | 21 | 13 | — |" in text
+    )
+    assert text.count("does not fit LFE5U-85F: DP16KD 300/208") >= 3  # ORB table, anchors, detail
+    assert "| Siudya/ORB_FPGA (HLS, PYNQ-Z2 = xc7z020) |" in text and "| 35 807 | 54 895 |" in text
+    assert "Electronics (MDPI) 2022" in text and "| 174 737 |" in text
+    assert "**not measured**" in text and "- *orb-fmax*" in text
+    assert "0.38 times Siudya/ORB_FPGA's LUTs" in text  # 13 500 / 35 807
+    side = text.split("### Side by side")[1].split("### Targets")[0]
+    assert "orb" not in side
+    issue6 = text.split("### Targets")[1].split("###")[0]
+    assert "orb" not in issue6
+    assert "The ORB rows are placed and routed on the LFE5U-85F" in text
+    assert "| `opencv-3x3-orb-1920` |" in report.entity_figures("fastnms_axi", rows, info)
+
+
+def test_orb_bench_section():
+    """The bench section's ORB table from a summary as `make bench` writes it."""
+    bench = fake_bench()
+    bench["orb_rtl"] = {
+        "generics": {"SCORE": "opencv", "NMS": "3x3", "MAX_PER_CELL": 15, "ORB_MAX_CELL": 32},
+        "build_seconds": None,
+        "rows": [
+            {
+                "cell": 16,
+                "per_cell": 4,
+                "cells": 8160,
+                "corners": [12000, 11000, 13000],
+                "input_clocks_per_pixel": 1.0051,
+                "input_stalls": 31000,
+                "frame_input_stalls": [0, 15500, 15500],
+                "latency_clocks": [22000, 21000, 20000],
+                "checked": True,
+                "sim_pixels_per_second": 500000.0,
+            }
+        ],
+    }
+    bench["phases"]["orb_rtl"] = 80.0
+    text = report.bench_section(bench)
+    assert "### ORB descriptors in the top" in text
+    assert "| 4 per 16x16 | 32 640 | 12 000, 11 000, 13 000 | 1.00510 | 0, 15 500, 15 500 |" in text
+    assert "cached build" in text and "ORB in the top 1 min 20 s" in text

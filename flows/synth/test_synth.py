@@ -327,3 +327,149 @@ def test_skid_buffer_handshake_fanout(ping_pong):
         assert max(readers.values()) <= 4, readers
     else:
         assert readers["out_ready"] >= 2 * width, readers
+
+
+# ---- the ORB rows of `make synth` (issue 36), without synthesizing ------------------
+
+
+def test_orb_entries_have_the_cores_generics():
+    """The ORB rows: the top `opencv-3x3-orb-1920` with the issue's generics, and the
+    stage with the generics fastnms_core gives fastnms_orb_stage (LANES, MAX_CELL,
+    MAX_PER_CELL as the core's generic map computes them), the budget beside it; all
+    placed on the LFE5U-85F."""
+    import re
+
+    from flows.synth import summary as synth_summary
+
+    rows = {r.entity: r for r in synth_summary.orb_entries(1920, 1080)}
+    top = rows["fastnms_axi"]
+    assert top.config == "opencv-3x3-orb-1920"
+    assert top.generics == {
+        "MAX_WIDTH": 1920,
+        "MAX_HEIGHT": 1080,
+        "SCORE": "opencv",
+        "NMS": "3x3",
+        "MAX_PER_CELL": 4,
+        "DESCRIPTOR": "orb",
+        "ORB_MAX_CELL": 16,
+    }
+    stage = rows["fastnms_orb_stage"].generics
+    core = (Path(__file__).resolve().parents[2] / "rtl" / "core" / "fastnms_core.vhd").read_text()
+    lanes = re.search(
+        r"orb_keypoints : entity work.fastnms_orb_stage.*?LANES\s*=>\s*(\d+)", core, re.S
+    )
+    assert lanes and stage["LANES"] == int(lanes.group(1))
+    assert stage["MAX_CELL"] == top.generics["ORB_MAX_CELL"]  # 2 ** (ORB_CELL_LOG + 4)
+    assert stage["MAX_PER_CELL"] == top.generics["MAX_PER_CELL"]
+    assert stage["SCORE_BITS"] == 8  # opencv
+    assert rows["fastnms_cell_budget"].generics == {
+        "MAX_WIDTH": 1920,
+        "MAX_HEIGHT": 1080,
+        "SCORE_BITS": 8,
+        "MAX_PER_CELL": 4,
+    }
+    assert all(r.orb_table and r.ecp5_device == "85k" for r in rows.values())
+    # `make synth`'s default entities: the configurations' rows, then the ORB rows once.
+    per_config = synth_summary.entries("opencv", "3x3", 1920, 1080, synth_summary.ENTITIES)
+    assert [r.entity for r in per_config][:2] == ["fastnms_axi", "fastnms_core"]
+    assert not any(r.orb_table for r in per_config)
+
+
+def test_orb_rows_in_the_flow(monkeypatch, tmp_path):
+    """summary.run with `orb` alone: the three ORB rows, flagged, each synthesized once,
+    the place and route of the top on the 85F with the timeout, a design that does not
+    fit recorded as such (the tools replaced by fakes)."""
+    from flows.synth import summary as synth_summary
+
+    def fake_ghdl(entity, generics, out_dir, sources=None):
+        out_dir.mkdir(parents=True, exist_ok=True)
+        netlist = out_dir / f"{entity}.v"
+        netlist.write_text("// fake\n")
+        return netlist, ""
+
+    calls = []
+
+    def fake_xc7(netlist, entity):
+        return {
+            "lut": 100,
+            "ff": 50,
+            "bram18_equiv": 2,
+            "dsp": 1,
+            "logic_levels": 3,
+            "carry4": 4,
+            "xc7_seconds": 1,
+        }
+
+    def fake_ecp5(netlist, entity, seed, extra, device, timeout):
+        calls.append((entity, device, timeout))
+        return {
+            "ecp5_fmax_mhz": None,
+            "ecp5_result": "does not fit LFE5U-85F: DP16KD 300/208",
+            "ecp5": {"device_key": device, "nextpnr_seconds": 1.0, "yosys_seconds": 1.0},
+        }
+
+    monkeypatch.setattr(synth_summary.synth, "ghdl_synth", fake_ghdl)
+    monkeypatch.setattr(synth_summary, "xc7_figures", fake_xc7)
+    monkeypatch.setattr(synth_summary, "ecp5_figures", fake_ecp5)
+    summary, info = synth_summary.run(
+        [], entities=["orb"], ecp5_for="top", root=tmp_path, ecp5_timeout=60, log=lambda s: None
+    )
+    assert [r["config"] for r in summary] == [
+        "opencv-3x3-orb-1920",
+        "fastnms_orb_stage-opencv-1920",
+        "fastnms_cell_budget-opencv-k4-1920",
+    ]
+    assert all(r["orb_table"] and not r["ppc_table"] for r in summary)
+    assert calls == [("fastnms_axi", "85k", 60)]
+    assert summary[0]["ecp5_result"].startswith("does not fit")
+    assert info["distinct_syntheses"] == 3 and info["ecp5_runs"] == 1
+    assert "85F" in info["ecp5_orb_device"]
+    # `make synth`'s default entities with a configuration, rendered into the section.
+    from flows.report import report
+
+    summary, info = synth_summary.run(
+        [("opencv", "3x3")], ecp5_for="none", root=tmp_path, log=lambda s: None
+    )
+    orb = [r["config"] for r in summary if r["orb_table"]]
+    assert orb == ["opencv-3x3-orb-1920", "fastnms_orb_stage-opencv-1920", orb[2]]
+    assert summary[0]["config"] == "opencv-3x3-1920"
+    text = report.synth_section(summary, info)
+    assert "### ORB descriptors (issue 36)" in text and "| ORB + budget |" in text
+    assert "`opencv-3x3-orb-1920`" not in text.split("### Side by side")[1].split("###")[1]
+
+
+def test_nextpnr_does_not_fit_or_timeout(monkeypatch, tmp_path):
+    """nextpnr stopping on an over-used resource, or running past the timeout, is a
+    result (fmax None, the reason), not an error."""
+    import subprocess
+
+    from flows.synth import ecp5
+
+    log = (
+        "Info: Logic utilisation before packing:\n"
+        "Info:     Total LUT4s:     50000/83640    59%\n"
+        "Info: Device utilisation:\n"
+        "Info: \t          DP16KD:   178/  108   164%\n"
+        "Info: \t      MULT18X18D:    21/   72    29%\n"
+        "ERROR: Unable to place cell 'x', no BELs remaining to implement cell type 'DP16KD'\n"
+    )
+    assert ecp5.over_used(log) == {"DP16KD": (178, 108)}
+
+    def failing(cmd, **kwargs):
+        return subprocess.CompletedProcess(cmd, 1, log, "")
+
+    design = tmp_path / "top.ecp5.json"
+    design.write_text("{}")
+    monkeypatch.setattr(ecp5.subprocess, "run", failing)
+    result = ecp5.nextpnr_ecp5(design, device="45k")
+    assert result["fmax_mhz"] is None
+    assert result["does_not_fit"] == "does not fit LFE5U-45F: DP16KD 178/108"
+    assert "--45k" not in ecp5.DEVICES["85k"]["args"] and "--85k" in ecp5.DEVICES["85k"]["args"]
+
+    def slow(cmd, **kwargs):
+        raise subprocess.TimeoutExpired(cmd, kwargs["timeout"], b"Info: placing\n")
+
+    monkeypatch.setattr(ecp5.subprocess, "run", slow)
+    result = ecp5.nextpnr_ecp5(design, device="85k", timeout=5)
+    assert result["fmax_mhz"] is None and "timeout 5 s" in result["timed_out"]
+    assert "LFE5U-85F" in result["device"]
