@@ -18,6 +18,15 @@ moves known from two bits per run of the previous row: a run that is not its cla
 continues the class on top (the only open class it can belong to), a first run pushes; the
 class's last run pops it.
 
+Parts, named as the RTL's entities (docs/fastnms_nms_region.md, Parts): `RegionStream.run` is
+the schedule (fastnms_nms_region_schedule: which side steps each clock, the flush); the
+`_Table`s are the tables (fastnms_nms_region_tables; the hardware reads them ahead of the
+reader, which the model needs not); `RegionStream.step` is the control
+(fastnms_nms_region_control: its flags, `Entry.last`/`merged`, `head != NONE` as the RTL's
+`runs`, `attached`, `active` and which numbered operation happens) and the key data path
+(fastnms_nms_region_keys: the keys and slots those operations move, the table writes, the
+records) in one, as the hardware's two halves a clock apart make the same operations.
+
 Clock schedule (what `RegionStream.run` models clock by clock): a current-row step takes one
 input pixel; rows >= 1 step the previous row's reader in lock-step with it. After a frame's
 last pixel the reader "flushes" that last row alone (no current row), one column per clock,
@@ -83,7 +92,8 @@ class Stats:
 
 @dataclass
 class _Table:
-    """One RAM: word per slot, with the (frame, row) that wrote it, to check the schedule."""
+    """One RAM: word per slot, with the (frame, row) that wrote it, to check the schedule.
+    (The tables part of the RTL: fastnms_nms_region_tables.)"""
 
     words: dict[int, tuple[object, tuple[int, int]]] = field(default_factory=dict)
     writes_this_step: int = 0
@@ -139,7 +149,9 @@ class RegionStream:
         prev_tag: tuple[int, int],
         cur_tag: tuple[int, int],
     ) -> None:
-        """Column x of a row of `width`.
+        """Column x of a row of `width`: the control's decisions (fastnms_nms_region_control)
+        and the key data path's moves of keys, slots and table words
+        (fastnms_nms_region_keys), which the RTL makes a clock apart.
 
         prev: (bit at x - 1, bit at x) of the previous row, or None when the reader does not
         step (first row of a frame). cur: (bit at x - 1, bit at x, score at x) of the current
@@ -266,7 +278,7 @@ class RegionStream:
         out_ready=None,
         out_depth: int = 4,
     ) -> tuple[list[list[tuple[int, int, int]]], list[int]]:
-        """Frames back to back through the clock schedule.
+        """Frames back to back through the clock schedule (fastnms_nms_region_schedule).
 
         in_valid(clock) / out_ready(clock): the input offers a pixel / the consumer takes a
         record in that clock (default: always). Returns per frame its records in output order

@@ -37,6 +37,14 @@ DEEPER = {
     # deeper beside the output stage: abc chains the FIFO's level flags.
     "fastnms_nms_serializer": MAX_LOGIC_LEVELS + 1,
     "fastnms_nms_region": 7,
+    # Its parts alone, at their default generics (a port counts as a register, so
+    # paths that cross parts are cut or joined differently than in the block): the
+    # schedule's flush and prime chains and the keys' merge are the block's 7; the
+    # control's decisions and the tables' reads ahead from the ports map into 5.
+    "fastnms_nms_region_schedule": 7,
+    "fastnms_nms_region_keys": 7,
+    "fastnms_nms_region_control": 5,
+    "fastnms_nms_region_tables": 5,
     # Its insertion maps into 3 levels (fastnms_budget_insert); its decode of a beat
     # (in_y against the last record's line above the cell, the beat's flags, the input
     # buffer's multiplexer) into 5 (docs/fastnms_cell_budget.md, *Limits*): not yet at 4.

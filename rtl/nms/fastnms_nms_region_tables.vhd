@@ -1,0 +1,332 @@
+-- The region NMS's run tables and their reads ahead (fastnms_nms_region,
+-- docs/fastnms_nms_region.md, Tables): per slot of the previous row's runs
+-- (slot = start column / 2), the head table says whether the run is the
+-- first of its class in its row (one bank per row parity), the last table
+-- whether it is the last, the data table gives a class's best key at its
+-- first run's slot.
+--
+-- The reads hide the memories' latency: the head and last words of the
+-- slot two columns ahead of the reader are read on every reader step
+-- (rstep, ahead_slot) and reach registers by the reader's column, so the
+-- control takes the run's bits (run_head, run_last) from registers; the
+-- data word is read a clock later, for the same column, with the operation
+-- (op's rv and slot), and reaches the key data path as data_word. A read in
+-- flight takes the writes to its word that land after it (each read
+-- watches its word until the reader takes it). The writes come registered
+-- from the key data path (fastnms_nms_region_keys); the previous row's last
+-- writes can land as the next row takes their words, and only there (the
+-- last bits of slot 0 at columns 0 and 1, the head and last bits of slot 1
+-- at column 2): each write's registered flags (_s0, _s1) say so, and the
+-- run's bits are then the write's. Simulation asserts that no other write
+-- lands on a word being taken.
+library ieee;
+  use ieee.std_logic_1164.all;
+  use ieee.numeric_std.all;
+
+library work;
+  use work.fastnms_pkg.all;
+  use work.fastnms_nms_region_pkg.all;
+
+entity fastnms_nms_region_tables is
+  generic (
+    MAX_WIDTH  : positive := 1920;
+    MAX_HEIGHT : positive := 4095;
+    SCORE_BITS : positive := 8
+  );
+  port (
+    clk : in    std_logic;
+    rst : in    std_logic;
+    -- The reader (fastnms_nms_region_schedule): its step, its bits (for the
+    -- assertions), where it is, and the slot it reads ahead.
+    rstep      : in    std_logic;
+    pm         : in    std_logic;
+    p0         : in    std_logic;
+    r_last     : in    std_logic;
+    r_col0     : in    std_logic;
+    r_col1     : in    std_logic;
+    r_col2     : in    std_logic;
+    r_slot0    : in    std_logic;
+    r_bank     : in    std_logic;
+    ahead_slot : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
+    -- The operation a clock after the control's step: the data word's read.
+    op      : in    std_logic_vector(OP_BITS - 1 downto 0);
+    op_slot : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
+    -- The writes (registered by the key data path): the data table's, and
+    -- whether it is to slot 0; the head table's (slot & bank), the one
+    -- waiting in its spare register for the next clock, and whether each is
+    -- to slot 1; the last table's (slot & '0'), and whether it is to slot 0
+    -- or 1.
+    data_w_en       : in    std_logic;
+    data_w_slot     : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
+    data_w_key      : in    unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
+    data_w_s0       : in    std_logic;
+    head_w_en       : in    std_logic;
+    head_w_addr     : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
+    head_w_bit      : in    std_logic;
+    head_w_s1       : in    std_logic;
+    head_spare_en   : in    std_logic;
+    head_spare_addr : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
+    head_spare_bit  : in    std_logic;
+    head_spare_s1   : in    std_logic;
+    last_w_en       : in    std_logic;
+    last_w_addr     : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
+    last_w_bit      : in    std_logic;
+    last_w_s0       : in    std_logic;
+    last_w_s1       : in    std_logic;
+    -- The previous-row run at the reader's column: its head bit (a
+    -- register) and its last bit (the register, or the write landing now).
+    run_head : out   std_logic;
+    run_last : out   std_logic;
+    -- The data word of the reader's column, for the operation's clock.
+    data_word : out   unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)
+  );
+end entity fastnms_nms_region_tables;
+
+architecture rtl of fastnms_nms_region_tables is
+
+  constant KB    : positive := key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
+  constant SLOTS : positive := slot_count(MAX_WIDTH);
+  constant SB    : positive := slot_bits(MAX_WIDTH);
+
+  -- A bit table's word address: the slot, then the bank (the row's parity;
+  -- '0' in the last table, which has one bank).
+  subtype bit_addr_t is unsigned(SB downto 0);
+
+  -- A table's reads, two columns ahead of the reader: the read in the RAM
+  -- (its address, and a write to it since, which the RAM may not show), and
+  -- the word of the reader's column, a register. Writes after a read update
+  -- it: the previous row's last writes land while the next row's first
+  -- columns are read. Words are key wide; the bit tables use bit 0.
+  subtype word_t is std_logic_vector(KB - 1 downto 0);
+
+  type ahead_t is record
+    addr1 : bit_addr_t;
+    fwd_v : std_logic;
+    fwd   : word_t;
+    addr2 : bit_addr_t;
+    word2 : word_t;
+  end record ahead_t;
+
+  constant AHEAD_RESET : ahead_t :=
+  (
+    addr1 => (others => '0'),
+    fwd_v => '0',
+    fwd   => (others => '0'),
+    addr2 => (others => '0'),
+    word2 => (others => '0')
+  );
+
+  -- The reads after one clock: they move on with a reader step (reading ra),
+  -- and take the write (w_en, w_addr, w_data) that lands at the clock's end.
+  function ahead_next (
+    p      : ahead_t;
+    w_en   : std_logic;
+    w_addr : bit_addr_t;
+    w_data : word_t;
+    step   : std_logic;
+    ra     : bit_addr_t;
+    rdata  : word_t
+  ) return ahead_t is
+    variable n : ahead_t;
+  begin
+
+    n := p;
+
+    if step = '1' then
+      n.addr2 := p.addr1;
+      if w_en = '1' and w_addr = p.addr1 then
+        n.word2 := w_data;
+      elsif p.fwd_v = '1' then
+        n.word2 := p.fwd;
+      else
+        n.word2 := rdata;
+      end if;
+      n.addr1 := ra;
+      n.fwd_v := w_en and to_sl(w_addr = ra);
+      n.fwd   := w_data;
+    else
+      if w_en = '1' and w_addr = p.addr2 then
+        n.word2 := w_data;
+      end if;
+      if w_en = '1' and w_addr = p.addr1 then
+        n.fwd_v := '1';
+        n.fwd   := w_data;
+      end if;
+    end if;
+
+    return n;
+
+  end function ahead_next;
+
+  function word (b : std_logic) return word_t is
+  begin
+
+    return (KB - 1 downto 1 => '0') & b;
+
+  end function word;
+
+  signal op_r       : op_t;
+  signal data_rd    : std_logic_vector(KB - 1 downto 0);
+  signal head_rd    : std_logic_vector(0 downto 0);
+  signal last_rd    : std_logic_vector(0 downto 0);
+  signal data_ahead : ahead_t;
+  signal head_ahead : ahead_t;
+  signal last_ahead : ahead_t;
+  -- The head bit of the previous-row run at rcol (the first of its class).
+  signal run_head_r : std_logic;
+  -- The last write lands on the word the reader takes now (slot 0 at
+  -- columns 0 and 1, slot 1 at column 2).
+  signal fwd_last0 : std_logic;
+  signal fwd_last1 : std_logic;
+  signal checks_on : boolean; -- false until the first reset: the invariants hold from then on
+
+begin
+
+  assert MAX_WIDTH >= 3
+    report "fastnms_nms_region_tables: MAX_WIDTH must be at least 3"
+    severity failure;
+
+  op_r <= to_op(op);
+
+  run_head  <= run_head_r;
+  fwd_last0 <= last_w_en and last_w_s0 and r_slot0;
+  fwd_last1 <= last_w_en and last_w_s1 and r_col2;
+  run_last  <= last_w_bit when (fwd_last0 or fwd_last1) = '1' else
+               last_ahead.word2(0);
+  data_word <= unsigned(data_ahead.word2);
+
+  reads_ahead : process (clk) is
+
+    variable p_start    : boolean;
+    variable fwd_head1  : boolean;
+    variable next_head  : ahead_t;
+    variable next_slot0 : std_logic;
+    variable next_col2  : std_logic;
+
+  begin
+
+    if rising_edge(clk) then
+      p_start := p0 = '1' and pm = '0';
+
+      -- synthesis translate_off
+      if rst = '1' then
+        checks_on <= true;
+      end if;
+      -- The write a registered head bit (run_head_r) took a clock ahead.
+      fwd_head1 := head_w_en = '1' and head_w_s1 = '1' and r_col2 = '1' and
+                   head_w_addr(0) = r_bank;
+      assert not (rstep = '1' and p_start and r_slot0 = '0' and head_w_en = '1' and
+                  head_w_addr = head_ahead.addr2 and not fwd_head1)
+        report "fastnms_nms_region: a head bit written as the reader takes it"
+        severity failure;
+      assert not (rstep = '1' and p_start and last_w_en = '1' and
+                  last_w_addr = last_ahead.addr2 and (fwd_last0 or fwd_last1) = '0')
+        report "fastnms_nms_region: a last bit written as the reader takes it"
+        severity failure;
+      assert not ((fwd_last0 or fwd_last1) = '1' and last_w_addr /= last_ahead.addr2)
+        report "fastnms_nms_region: last_w_s0 or last_w_s1 out of step"
+        severity failure;
+      assert not (fwd_head1 and head_w_addr /= head_ahead.addr2)
+        report "fastnms_nms_region: head_w_s1 out of step"
+        severity failure;
+      assert not checks_on or rst = '1' or
+             (fwd_head1 and run_head_r = head_w_bit) or
+             (not fwd_head1 and run_head_r = (head_ahead.word2(0) or r_slot0))
+        report "fastnms_nms_region: run_head_r out of step"
+        severity failure;
+      assert not (op_r.push = '1' and op_r.rv = '1' and data_w_en = '1' and
+                  (data_w_slot & '0') = data_ahead.addr2 and (op_r.r_col0 = '0' or data_w_s0 = '0'))
+        report "fastnms_nms_region: a key written as the reader takes it"
+        severity failure;
+      -- synthesis translate_on
+
+      next_head  := ahead_next(head_ahead, head_w_en, head_w_addr, word(head_w_bit),
+                               rstep, ahead_slot & r_bank, word(head_rd(0)));
+      head_ahead <= next_head;
+      -- The head bit of the run the reader takes next, a register: the word
+      -- it reads ahead, or the row's first run, or the previous row's last
+      -- column's second write (from the spare register: slot 1, taken at
+      -- column 2) when it lands as the reader takes that word.
+      next_slot0 := r_slot0;
+      next_col2  := r_col2;
+      if rstep = '1' then
+        next_slot0 := r_last or r_col0;
+        next_col2  := r_col1;
+      end if;
+      -- The RAM's output is the last input of the choice (one LUT after the
+      -- block RAM, whose clock-to-output is long on ECP5).
+      if head_spare_en = '1' and head_spare_s1 = '1' and next_col2 = '1' and
+         head_spare_addr(0) = (r_bank xor (rstep and r_last)) then
+        run_head_r <= head_spare_bit;
+      elsif next_slot0 = '1' then
+        run_head_r <= '1';
+      elsif rstep = '1' and not (head_w_en = '1' and head_w_addr = head_ahead.addr1) and
+            head_ahead.fwd_v = '0' then
+        run_head_r <= head_rd(0);
+      else
+        run_head_r <= next_head.word2(0);
+      end if;
+      last_ahead <= ahead_next(last_ahead, last_w_en, last_w_addr, word(last_w_bit),
+                               rstep, ahead_slot & '0', word(last_rd(0)));
+      data_ahead <= ahead_next(data_ahead, data_w_en, data_w_slot & '0', word_t(data_w_key),
+                               op_r.rv, op_slot & '0', data_rd);
+
+      if rst = '1' then
+        run_head_r <= '1';
+        head_ahead <= AHEAD_RESET;
+        last_ahead <= AHEAD_RESET;
+        data_ahead <= AHEAD_RESET;
+      end if;
+    end if;
+
+  end process reads_ahead;
+
+  data_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => KB
+    )
+    port map (
+      clk     => clk,
+      wr_en   => data_w_en,
+      wr_addr => resize(data_w_slot, clog2(SLOTS)),
+      wr_data => std_logic_vector(data_w_key),
+      rd_en   => op_r.rv,
+      rd_addr => resize(op_slot, clog2(SLOTS)),
+      rd_data => data_rd
+    );
+
+  -- One bit per word: LUT RAM.
+  head_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => 2 * SLOTS,
+      WIDTH => 1,
+      STYLE => "distributed"
+    )
+    port map (
+      clk     => clk,
+      wr_en   => head_w_en,
+      wr_addr => resize(head_w_addr, clog2(2 * SLOTS)),
+      wr_data => (0 => head_w_bit),
+      rd_en   => rstep,
+      rd_addr => resize(ahead_slot & r_bank, clog2(2 * SLOTS)),
+      rd_data => head_rd
+    );
+
+  last_table : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => 1,
+      STYLE => "distributed"
+    )
+    port map (
+      clk     => clk,
+      wr_en   => last_w_en,
+      wr_addr => resize(last_w_addr(SB downto 1), clog2(SLOTS)),
+      wr_data => (0 => last_w_bit),
+      rd_en   => rstep,
+      rd_addr => resize(ahead_slot, clog2(SLOTS)),
+      rd_data => last_rd
+    );
+
+end architecture rtl;
