@@ -268,7 +268,7 @@ begin
 
   end process owed_check;
 
--- pragma translate_on
+  -- pragma translate_on
 
   -- ---- FIFO ----------------------------------------------------------------------
 
