@@ -363,3 +363,14 @@ def test_orb_rate_bound_with_blanking(rng, seed):
     assert np.array_equal(got.angle_bits, want.angles.view(np.uint32))
     assert np.array_equal(got.descriptors, want.descriptors)
     assert len(got.records) > 25_000, "noise at t = 0 fills every cell"
+    # Each keypoint's record within CELL + 22 lines of its cell row's last pixel
+    # (the cell row's drain, the patch's 19 rows below and the engine's lag behind
+    # them at its full rate; docs/orb_rtl.md, Latency).
+    line = 1920 + timing.hblank
+    for f in result.frames:
+        beat0 = f.words[:: regs.REC_ORB_BEATS].astype(np.int64)
+        ys = (beat0 >> regs.REC_Y.lsb) & ((1 << regs.REC_Y.width) - 1)
+        sent = f.word_clocks[regs.REC_ORB_BEATS - 1 :: regs.REC_ORB_BEATS]
+        last_line = np.minimum(1079, (ys // 16 + 1) * 16 - 1)
+        after = sent - (f.first_pixel + last_line * line + 1919)
+        assert after.max() <= (16 + 22) * line, f"{after.max() / line:.1f} lines, seed {seed}"
