@@ -345,8 +345,9 @@ def test_orb_rate_bound_with_blanking(rng, seed):
     """ORB at 1920x1080 (opencv + 3x3, CELL 16, K 4 = CELL x CELL / 64, the engine's 64
     clocks per keypoint): noise at t = 0, two frames back to back with 1080p60's blanking
     (280 clocks after each line, 45 lines of 2200 clocks after each frame): the input is
-    never held, and the second frame's keypoints equal the golden model's (angles and
-    descriptors). Without blanking the next frame's first pixels wait while the last cell
+    never held, the second frame's keypoints equal the golden model's (angles and
+    descriptors), and every keypoint's record leaves within CELL + 22 lines of its
+    cell row's last pixel. Without blanking the next frame's first pixels wait while the last cell
     row's keypoints are in ORB (one frame at a time in the core): measured, not asserted
     here."""
     from fastnms.golden.orb import orb_features
