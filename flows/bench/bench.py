@@ -632,6 +632,18 @@ def orb_part(images: list[np.ndarray], args: argparse.Namespace) -> dict:
     return result
 
 
+def frames_summary(args, sources) -> dict:
+    """The summary's description of the bench frames (compared by --only orb)."""
+    return {
+        "count": args.frames,
+        "width": args.width,
+        "height": args.height,
+        "threshold": args.threshold,
+        "photographs": sources,
+        "fit": "cv2.resize to cover, centre crop",
+    }
+
+
 def run_orb_only(args: argparse.Namespace) -> dict:
     """`--only orb`: the ORB rows alone, merged into the summary at args.out when
     there is one (its frames must be the same size), else a summary of them alone."""
@@ -657,14 +669,7 @@ def run_orb_only(args: argparse.Namespace) -> dict:
         summary.setdefault("phases", {})["orb_rtl"] = seconds
         return summary
     return {
-        "frames": {
-            "count": args.frames,
-            "width": args.width,
-            "height": args.height,
-            "threshold": args.threshold,
-            "photographs": sources,
-            "fit": "cv2.resize to cover, centre crop",
-        },
+        "frames": frames_summary(args, sources),
         "orb_rtl": orb_rtl,
         "phases": {"orb_rtl": seconds},
         "wall_seconds": seconds,
@@ -803,14 +808,7 @@ def run(args: argparse.Namespace) -> dict:
         for s, n in MEMORY_CONFIGS
     ]
     return {
-        "frames": {
-            "count": args.frames,
-            "width": args.width,
-            "height": args.height,
-            "threshold": args.threshold,
-            "photographs": sources,
-            "fit": "cv2.resize to cover, centre crop",
-        },
+        "frames": frames_summary(args, sources),
         "simulation": sims,
         "uhd": uhd,
         "engines": engines,
