@@ -22,6 +22,7 @@ import numpy as np
 from fastnms.golden.budget import CELL_SIZES, MAX_PER_CELL, cell_budget
 from fastnms.golden.image import ImageError, load_grey
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
+from fastnms.golden.nms import AREA_MAX
 from fastnms.golden.orb import PATCH_SIZE, OrbFeatures, orb_features
 from fastnms.sim import regs
 from fastnms.sim.run import (
@@ -114,6 +115,42 @@ def budget_of(args: argparse.Namespace) -> tuple[int, int] | None:
     return None if args.cell is None else (args.cell, args.per_cell)
 
 
+def min_area_arg(text: str) -> int:
+    """argparse type: MIN_AREA, a decimal integer in 0..AREA_MAX (2047)."""
+    try:
+        value = int(text, 10)
+    except ValueError:
+        value = None
+    if value is None or not 0 <= value <= AREA_MAX:
+        raise argparse.ArgumentTypeError(
+            f"min-area must be an integer in 0..{AREA_MAX}, got {text!r}"
+        )
+    return value
+
+
+def is_region(args: argparse.Namespace) -> bool:
+    """The region NMS (region4, region8): its records carry the region's area."""
+    return args.nms.startswith("region")
+
+
+def min_area_of(args: argparse.Namespace) -> int | None:
+    """--min-area, None without it; only with a region NMS and without --orb."""
+    if args.min_area is None:
+        return None
+    if not is_region(args):
+        raise UsageError(
+            f"--min-area needs --nms region4 or region8 (the {args.nms} NMS has no regions)"
+        )
+    if args.orb:
+        raise UsageError("--min-area does not go with --orb")
+    return args.min_area
+
+
+def with_areas(records: np.ndarray, areas: np.ndarray) -> np.ndarray:
+    """(N, 4) x, y, score, area."""
+    return np.column_stack([records, np.asarray(areas, np.int64)]).astype(np.int64)
+
+
 def per_cell_arg(text: str) -> int:
     """argparse type: keypoints per cell, 1..15."""
     try:
@@ -195,8 +232,14 @@ def output_set() -> Iterator[OutputSet]:
         outputs.discard()
 
 
+CSV_COLUMNS = ("x", "y", "score", "area")
+
+
 def csv_bytes(records: np.ndarray) -> bytes:
-    lines = ["x,y,score"] + [f"{x},{y},{s}" for x, y, s in records.tolist()]
+    """x,y,score, with a fourth column (the region NMS's records) x,y,score,area."""
+    columns = records.shape[1] if records.ndim == 2 else 3
+    lines = [",".join(CSV_COLUMNS[:columns])]
+    lines += [",".join(map(str, r)) for r in records.tolist()]
     return ("\n".join(lines) + "\n").encode("ascii")
 
 
@@ -293,7 +336,21 @@ def add_detection_args(p: argparse.ArgumentParser, with_image: bool = True) -> N
         default="3x3",
         help="non-maxima suppression (default 3x3, OpenCV's)",
     )
-    p.add_argument("--csv", metavar="OUT.csv", help="write the corners as CSV: x,y,score")
+    p.add_argument(
+        "--min-area",
+        type=min_area_arg,
+        metavar="N",
+        help=f"the paper's region filtering (MIN_AREA): drop the regions with fewer than N "
+        f"corner pixels, N an integer 0..{AREA_MAX} (0 and 1 keep every region; areas "
+        f"saturate at {AREA_MAX}); only with --nms region4 or region8",
+    )
+    p.add_argument(
+        "--csv",
+        metavar="OUT.csv",
+        help="write the corners as CSV: x,y,score; with --nms region4 or region8 "
+        "x,y,score,area (the region's corner pixels, saturating at "
+        f"{AREA_MAX})",
+    )
     p.add_argument("--png", metavar="OUT.png", help="write the image with coloured corner boxes")
 
 
@@ -409,7 +466,8 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         description=(
             "Simulate the IP's top level, fastnms_axi, on the images, sent back to back as "
             "consecutive frames (AXI4-Stream video in, AXI4-Lite set-up of each frame's size "
-            "and threshold, corner records out), and write the corners it emitted. "
+            "and threshold, and of MIN_AREA with --min-area, corner records out), and write "
+            "the corners it emitted (with a region NMS each with its region's area). "
             f"{GREY_NOTE} Frames from {MIN_SIZE}x{MIN_SIZE} to {LARGEST_WIDTH}x{LARGEST_HEIGHT}: "
             f"the simulated IP is built for {MAX_WIDTH}x{MAX_HEIGHT} when every frame fits, "
             f"else for {LARGEST_WIDTH}x{LARGEST_HEIGHT} (an engine build of its own). "
@@ -424,7 +482,7 @@ def add_sim_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "--json",
         metavar="OUT.json",
         help="write width, height, threshold, score, nms, ppc, cell, per_cell (null without a "
-        "budget), orb, engine, timing, corners, cycles, "
+        "budget), min_area (null without --min-area), orb, engine, timing, corners, cycles, "
         "input_stalls, status_flags, wall_seconds (and `frames` for several)",
     )
     return p
@@ -436,7 +494,9 @@ def add_compare_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
         help="run the RTL and the golden model on images and compare them",
         description=(
             "Run `fastnms sim` and the golden model on the images (and, for opencv + 3x3, "
-            "cv2.FastFeatureDetector) and compare the sets of (x, y, score) frame by frame. "
+            "cv2.FastFeatureDetector) and compare the sets of (x, y, score) frame by frame; with "
+            "--nms region4 or region8 the sets of (x, y, score, area), the golden model "
+            "filtered by --min-area as the RTL is. "
             "Prints the first differences; exit status 1 on any difference, 0 when identical. "
             "--csv and --png write the RTL's corners."
         ),
@@ -538,8 +598,18 @@ def write_outputs(
         raise UsageError(f"cannot write output: {where}{e.strerror or e}") from None
 
 
+def golden_budget(records: np.ndarray, cell: int, per_cell: int) -> np.ndarray:
+    """cell_budget of (N, 3) or (N, 4) records (the area kept with its record)."""
+    kept = cell_budget(records[:, :3], cell, per_cell)
+    if records.shape[1] == 3:
+        return kept
+    area = {(x, y): a for x, y, _, a in records.tolist()}  # one record per position
+    return with_areas(kept, [area[(x, y)] for x, y, _ in kept.tolist()])
+
+
 def run_golden(args: argparse.Namespace) -> int:
     budget = budget_of(args) or (None, 0)
+    min_area = min_area_of(args)
     check_outputs(args.csv, args.png)
     img = load_input(args.image)
 
@@ -548,9 +618,11 @@ def run_golden(args: argparse.Namespace) -> int:
         result = orb_features(img, args.threshold, args.score, args.nms, *budget)
         count, what = len(result.records), "keypoints with ORB descriptors"
     else:
-        result = detect(img, args.threshold, args.score, args.nms)
+        result = detect(
+            img, args.threshold, args.score, args.nms, min_area or 0, with_area=is_region(args)
+        )
         if args.per_cell:
-            result = cell_budget(result, *budget)
+            result = golden_budget(result, *budget)
         count, what = len(result), "corners"
     elapsed = time.perf_counter() - start
     write_outputs(img, result, args)
@@ -559,9 +631,14 @@ def run_golden(args: argparse.Namespace) -> int:
     within = f" (at most {args.per_cell} per {args.cell}x{args.cell} cell)" if args.cell else ""
     print(
         f"{os.path.basename(args.image)}: {w}x{h}, score={args.score} nms={args.nms} "
-        f"threshold={args.threshold}: {count} {what}{within} in {elapsed:.3f} s"
+        f"threshold={args.threshold}{min_area_text(args)}: {count} {what}{within} in "
+        f"{elapsed:.3f} s"
     )
     return 0
+
+
+def min_area_text(args: argparse.Namespace) -> str:
+    return "" if args.min_area is None else f" min-area={args.min_area}"
 
 
 class Progress:
@@ -596,6 +673,7 @@ def timing_of(args: argparse.Namespace) -> Timing:
 
 
 def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> SimResult:
+    min_area = min_area_of(args)
     if args.ppc != 1 and args.nms not in ("3x3", "none"):
         raise UsageError(
             f"--ppc {args.ppc} needs --nms 3x3 or none (the region NMS takes one pixel per clock)"
@@ -647,6 +725,7 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
                 args.orb,
             ),
             budget=budget,
+            min_area=min_area,
         )
     except SimError as e:
         raise UsageError(str(e)) from None
@@ -661,6 +740,7 @@ def frame_summary(name: str, args: argparse.Namespace, frame: FrameResult) -> st
     w, h = frame.width, frame.height
     return (
         f"{name}: {w}x{h}, score={args.score} nms={args.nms} threshold={args.threshold}"
+        f"{min_area_text(args)}"
         f"{f' ppc={args.ppc}' if args.ppc != 1 else ''}"
         f"{f' cell={args.cell} per-cell={args.per_cell}' if args.cell else ''}: "
         f"{frame.records.shape[0]} {'ORB keypoints' if args.orb else 'corners'}; "
@@ -691,17 +771,20 @@ def status_flags(status: int) -> list[str]:
     return [name for name, f in regs.REGISTERS["STATUS"].fields.items() if f.get(status)]
 
 
-def frames_csv_bytes(sim: SimResult, orb: bool = False) -> bytes:
+def frames_csv_bytes(sim: SimResult, orb: bool = False, region: bool = False) -> bytes:
     if orb:
         tables = [orb_csv_bytes(frame_features(f)).decode("ascii") for f in sim.frames]
-        lines = ["frame," + tables[0].splitlines()[0]]
-        for i, table in enumerate(tables):
-            lines += [f"{i},{line}" for line in table.splitlines()[1:]]
-        return ("\n".join(lines) + "\n").encode("ascii")
-    lines = ["frame,x,y,score"]
-    for i, f in enumerate(sim.frames):
-        lines += [f"{i},{x},{y},{s}" for x, y, s in f.records.tolist()]
+    else:
+        tables = [csv_bytes(frame_records(f, region)).decode("ascii") for f in sim.frames]
+    lines = ["frame," + tables[0].splitlines()[0]]
+    for i, table in enumerate(tables):
+        lines += [f"{i},{line}" for line in table.splitlines()[1:]]
     return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def frame_records(frame: FrameResult, region: bool) -> np.ndarray:
+    """A simulated frame's records: x, y, score, and with the region NMS its area."""
+    return with_areas(frame.records, frame.areas) if region else frame.records
 
 
 def frame_features(frame: FrameResult) -> OrbFeatures:
@@ -721,6 +804,7 @@ def sim_json(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace, sim
         "ppc": args.ppc,
         "cell": args.cell,
         "per_cell": args.per_cell,
+        "min_area": args.min_area,
         "orb": args.orb,
         "engine": args.engine,
         "timing": timing_of(args).as_dict(),
@@ -757,13 +841,16 @@ def rtl_inputs(args: argparse.Namespace, *outputs: str | None) -> list[tuple[str
 
 
 def write_sim_outputs(frames, sim: SimResult, args: argparse.Namespace, extra=()) -> None:
-    first = frame_features(sim.frames[0]) if args.orb else sim.records
+    if args.orb:
+        first = frame_features(sim.frames[0])
+    else:
+        first = frame_records(sim.frames[0], is_region(args))
     if len(frames) == 1:
         write_outputs(frames[0][1], first, args, extra)
         return
     extra = list(extra)
     if args.csv:
-        extra.append((args.csv, frames_csv_bytes(sim, args.orb)))
+        extra.append((args.csv, frames_csv_bytes(sim, args.orb, is_region(args))))
     args_no_csv = argparse.Namespace(**{**vars(args), "csv": None})
     write_outputs(frames[0][1], first, args_no_csv, extra)
 
@@ -778,14 +865,15 @@ def run_sim(args: argparse.Namespace) -> int:
 
 
 def differences(got: np.ndarray, want: np.ndarray, limit: int = 10) -> list[str]:
-    """The first records (sorted by y, x) only in one of the two sets."""
+    """The first records (sorted by y, x) only in one of the two sets: (x, y, score), or
+    (x, y, score, area) with the region NMS's areas."""
     a = {tuple(int(v) for v in r) for r in got}
     b = {tuple(int(v) for v in r) for r in want}
     only = sorted(
         [(r, "rtl only") for r in a - b] + [(r, "reference only") for r in b - a],
         key=lambda item: (item[0][1], item[0][0]),
     )
-    return [f"  ({x}, {y}, {s}): {where}" for (x, y, s), where in only[:limit]]
+    return [f"  ({', '.join(map(str, r))}): {where}" for r, where in only[:limit]]
 
 
 def opencv_records(img: np.ndarray, threshold: int) -> np.ndarray:
@@ -806,22 +894,28 @@ def run_compare(args: argparse.Namespace) -> int:
         if args.orb:
             status |= compare_orb(prefix, img, got, args)
             continue
-        references = {"golden model": detect(img, args.threshold, args.score, args.nms)}
+        region = is_region(args)
+        golden = detect(
+            img, args.threshold, args.score, args.nms, args.min_area or 0, with_area=region
+        )
+        references = {"golden model": golden}
+        records = frame_records(got, region)
         if args.score == "opencv" and args.nms == "3x3":
             references[f"OpenCV {cv2.__version__} FAST"] = opencv_records(img, args.threshold)
         if budget is not None:
             references = {f"{k} + budget": cell_budget(v, *budget) for k, v in references.items()}
         for ref, want in references.items():
-            diff = differences(got.records, want)
+            diff = differences(records, want)
+            what = "corners with their areas" if region else "corners"
             if diff:
                 status = 1
                 print(
                     f"{prefix}rtl vs {ref}: DIFFERENT "
-                    f"({got.records.shape[0]} vs {want.shape[0]} corners)"
+                    f"({records.shape[0]} vs {want.shape[0]} {what})"
                 )
                 print("\n".join(diff))
             else:
-                print(f"{prefix}rtl vs {ref}: identical ({want.shape[0]} corners)")
+                print(f"{prefix}rtl vs {ref}: identical ({want.shape[0]} {what})")
     return status
 
 

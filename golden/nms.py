@@ -9,6 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 CONNECTIVITIES = (4, 8)
+# A region's area (its number of corner pixels) as its record carries it: 11 bits, saturating.
+AREA_BITS = 11
+AREA_MAX = 2**AREA_BITS - 1
 
 
 def _check_maps(corner: object, score: object) -> tuple[np.ndarray, np.ndarray]:
@@ -112,18 +115,38 @@ def _components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
             labels = jumped
 
 
-def nms_region(corner: np.ndarray, score: np.ndarray, connectivity: int) -> np.ndarray:
+def validate_min_area(min_area: object) -> int:
+    """MIN_AREA: an integer 0 .. AREA_MAX (0 and 1 keep every region)."""
+    if isinstance(min_area, bool) or not isinstance(min_area, (int, np.integer)):
+        raise ValueError(f"min_area must be an integer 0..{AREA_MAX}, got {min_area!r}")
+    if not 0 <= min_area <= AREA_MAX:
+        raise ValueError(f"min_area must be in 0..{AREA_MAX}, got {min_area}")
+    return int(min_area)
+
+
+def nms_region(
+    corner: np.ndarray,
+    score: np.ndarray,
+    connectivity: int,
+    min_area: int = 0,
+    with_area: bool = False,
+) -> np.ndarray:
     """The paper's NMS: one record per connected set of corner pixels (4- or 8-connected),
     holding the set's maximum score; ties go to the first pixel in raster order.
 
     Membership is the corner flag alone, so a corner scoring 0 still joins its neighbours.
+    The paper's region filtering: a region with fewer than `min_area` corner pixels has no
+    record (0 and 1 keep every region). `with_area`: a fourth column, the region's area
+    saturated at AREA_MAX, as the hardware's record carries it.
     """
     if connectivity not in CONNECTIVITIES:
         raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
+    min_area = validate_min_area(min_area)
     corner, score = _check_maps(corner, score)
     rows, starts, ends = _runs(corner)
+    columns = 4 if with_area else 3
     if rows.size == 0:
-        return _records(rows, rows, rows)
+        return np.zeros((0, columns), dtype=np.int64)
     a, b = _touching_runs(rows, starts, ends, corner.shape[1], connectivity)
     run_label = _components(rows.size, a, b)
 
@@ -143,5 +166,14 @@ def nms_region(corner: np.ndarray, score: np.ndarray, connectivity: int) -> np.n
     candidates = np.flatnonzero(values == best[label])  # increasing = raster order
     first = np.full(rows.size, n_pix)
     np.minimum.at(first, label[candidates], candidates)
-    chosen = np.sort(first[first < n_pix])
-    return _records(xs[chosen], ys[chosen], values[chosen])
+    area = np.bincount(label, minlength=rows.size)
+    closed = first < n_pix  # the labels that are regions
+    chosen_area = area[closed]
+    order = np.argsort(first[closed])
+    chosen, chosen_area = first[closed][order], chosen_area[order]
+    kept = chosen_area >= min_area
+    chosen, chosen_area = chosen[kept], chosen_area[kept]
+    records = _records(xs[chosen], ys[chosen], values[chosen])
+    if with_area:
+        return np.column_stack([records, np.minimum(chosen_area, AREA_MAX)]).astype(np.int64)
+    return records

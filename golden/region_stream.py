@@ -42,6 +42,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .nms import AREA_MAX
+
 NONE = -1  # "no slot" in head and tail fields
 
 
@@ -54,12 +56,18 @@ def best(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, in
     return a if a >= b else b
 
 
+def add_area(a: int, b: int) -> int:
+    """Areas merge by addition, saturating as the hardware's AREA_BITS-bit sum does."""
+    return min(a + b, AREA_MAX)
+
+
 @dataclass
 class Entry:
     """A previous-row class on the stack (an open region seen from the current row)."""
 
     last: bool  # its run under the reader is its last in the previous row
     data: tuple[int, int, int]  # best key (valid unless merged into the entry above)
+    area: int  # its corner pixels so far, saturated (valid with data)
     head: int = NONE  # slot of its first run in the current row, NONE if none yet
     tail: int = NONE  # slot of its latest run in the current row
     merged: bool = False  # holds the data of the entry below too (merged with it)
@@ -71,6 +79,7 @@ class Group:
     """The current run's class while it is not attached to the stack's top."""
 
     data: tuple[int, int, int]
+    area: int
     head: int
     tail: int
     merge_step: int = -2
@@ -130,7 +139,7 @@ class RegionStream:
         self.stats = Stats()
         self.step_count = 0
         self.table_merge_step: dict[int, int] = {}  # data table slot -> its key's merge_step
-        self.out: list[tuple[int, int, int]] = []
+        self.out: list[tuple[int, int, int, int]] = []  # x, y, score, area
         self._reset_current()
 
     def _reset_current(self) -> None:
@@ -179,14 +188,14 @@ class RegionStream:
                 assert self.stack, "a continuing run without an open class"
                 self.stack[-1].last = last
             else:
-                data = self.data.read(slot, prev_tag)
-                self.stack.append(Entry(last, data, merge_step=self.table_merge_step[slot]))
+                data, area = self.data.read(slot, prev_tag)
+                self.stack.append(Entry(last, data, area, merge_step=self.table_merge_step[slot]))
                 pushed = True
                 assert len(self.stack) <= self.stack_depth, "stack overflow"
                 self.stats.max_depth = max(self.stats.max_depth, len(self.stack))
         # 2. A current-row run starts: a class of its own until it touches the previous row.
         if c0 and not cm:
-            self.group = Group(key(score, x, cur_tag[1]), slot, slot)
+            self.group = Group(key(score, x, cur_tag[1]), 1, slot, slot)
             self.attached = False
             self.active = True
         # 3. Contact between the current run and a previous-row run (always the top's).
@@ -205,6 +214,7 @@ class RegionStream:
                 top.tail = g.tail
                 self._count_chained(x, top, g)
                 top.data = best(top.data, g.data)
+                top.area = add_area(top.area, g.area)
                 self.group = None
                 self.attached = True
             elif pushed:
@@ -213,15 +223,15 @@ class RegionStream:
                 assert below.head != NONE
                 self._count_chained(x, top, below)
                 top.data = best(top.data, below.data)
+                top.area = add_area(top.area, below.area)
                 top.head, top.tail = below.head, below.tail
                 top.merged = True
         # 4. The current pixel joins its run's class.
         if c0 and cm:
             pix = key(score, x, cur_tag[1])
-            if self.attached:
-                self.stack[-1].data = best(self.stack[-1].data, pix)
-            else:
-                self.group.data = best(self.group.data, pix)
+            owner = self.stack[-1] if self.attached else self.group
+            owner.data = best(owner.data, pix)
+            owner.area = add_area(owner.area, 1)
         # 5. The current run ends (at x - 1, or at x at the end of the row).
         if (cm and not c0) or (c0 and eol):
             if not self.attached:
@@ -232,16 +242,16 @@ class RegionStream:
             e = self.stack.pop()
             if e.merged:
                 below = self.stack[-1]
-                below.data, below.head, below.tail = e.data, e.head, e.tail
+                below.data, below.area, below.head, below.tail = e.data, e.area, e.head, e.tail
                 below.merge_step = e.merge_step
             elif self.active and self.attached:
-                self.group = Group(e.data, e.head, e.tail, e.merge_step)
+                self.group = Group(e.data, e.area, e.head, e.tail, e.merge_step)
                 self.attached = False
             elif e.head != NONE:
                 self._finalize(e, cur_tag)
             else:
                 score_, ny, nx = e.data
-                self.out.append((-nx, -ny, score_))
+                self.out.append((-nx, -ny, score_, e.area))
                 self.stats.records += 1
         if eol and cur is not None:
             assert not self.active
@@ -255,7 +265,7 @@ class RegionStream:
     def _finalize(self, g: Group | Entry, tag: tuple[int, int]) -> None:
         """The class has all its current-row runs: its data waits at its first run's slot,
         which is marked first, and its latest run is marked last."""
-        self.data.write(g.head, g.data, tag)
+        self.data.write(g.head, (g.data, g.area), tag)
         self.table_merge_step[g.head] = g.merge_step
         self.head.write((self.parity[tag], g.head), True, tag)
         self.last.write(g.tail, True, tag)
@@ -277,7 +287,7 @@ class RegionStream:
         in_valid=None,
         out_ready=None,
         out_depth: int = 4,
-    ) -> tuple[list[list[tuple[int, int, int]]], list[int]]:
+    ) -> tuple[list[list[tuple[int, int, int, int]]], list[int]]:
         """Frames back to back through the clock schedule (fastnms_nms_region_schedule).
 
         in_valid(clock) / out_ready(clock): the input offers a pixel / the consumer takes a
@@ -297,10 +307,10 @@ class RegionStream:
                 self.parity[(f, y)] = self.rows_seen % 2
                 self.rows_seen += 1
                 pixels += [(f, y, x, w, h, int(score[y, x])) for x in range(w)]
-        per_frame: list[list[tuple[int, int, int]]] = [[] for _ in frames]
+        per_frame: list[list[tuple[int, int, int, int]]] = [[] for _ in frames]
         eof_clock = [0] * len(frames)
         order: list[int] = []  # frame of each beat leaving, to check frames do not mix
-        fifo: list[tuple[str, int, tuple[int, int, int] | None]] = []
+        fifo: list[tuple[str, int, tuple[int, int, int, int] | None]] = []
         flush = None  # [frame, column, width, height]: the reader flushing a last row
         queued = None  # the next frame's flush, when its last pixel came before the reader
         eof_pending = None  # frame whose end-of-frame beat is due

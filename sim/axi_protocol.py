@@ -10,7 +10,8 @@ Checked at every rising edge of aclk, on the values settled after the edge:
   and the payload stays unchanged until the handshake;
 - the corner records: TKEEP all ones, TLAST equal to the record's LAST bit on its final
   beat and 0 on the others, the flags EMPTY/ABORTED/OVERFLOW only on a LAST record, EMPTY
-  with x = y = score = 0 and never with ORB, the reserved bits 0; a record with ORB is
+  with x = y = score = area = 0 and never with ORB, no AREA with ORB (the region NMS has
+  no ORB), the reserved bits 0; a record with ORB is
   REC_ORB_BEATS beats (record format 2), bits 63:32 of its angle beat 0;
 - AXI4-Lite: no B response without a write address and data taken before it, no R response
   without a read address taken before it.
@@ -38,6 +39,7 @@ RESERVED = (
         | regs.REC_ABORTED.mask
         | regs.REC_OVERFLOW.mask
         | regs.REC_ORB.mask
+        | regs.REC_AREA.mask
     )
     & (1 << 64) - 1
 )
@@ -234,7 +236,9 @@ class AxiProtocolChecker:
         flags = regs.REC_EMPTY.mask | regs.REC_ABORTED.mask | regs.REC_OVERFLOW.mask
         if word & flags and not flag_last:
             self._fail(f"record 0x{word:016x}: EMPTY/ABORTED/OVERFLOW without LAST")
-        corner = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask
+        if orb and regs.REC_AREA.get(word):
+            self._fail(f"record 0x{word:016x}: AREA with ORB")
+        corner = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask | regs.REC_AREA.mask
         if regs.REC_EMPTY.get(word) and word & corner:
             self._fail(f"record 0x{word:016x}: EMPTY with a corner")
         if word & RESERVED:

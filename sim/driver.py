@@ -210,9 +210,15 @@ class AxiTop:
         return int.from_bytes(resp.data, "little")
 
     async def configure(
-        self, width: int, height: int, threshold: int, budget: tuple[int, int] | None = None
+        self,
+        width: int,
+        height: int,
+        threshold: int,
+        budget: tuple[int, int] | None = None,
+        min_area: int | None = None,
     ) -> None:
-        """WIDTH, HEIGHT, THRESHOLD and, when given, BUDGET = (cell, per_cell)."""
+        """WIDTH, HEIGHT, THRESHOLD and, when given, BUDGET = (cell, per_cell) and
+        MIN_AREA = min_area."""
         await self.write(regs.WIDTH, width)
         await self.write(regs.HEIGHT, height)
         await self.write(regs.THRESHOLD, threshold)
@@ -221,6 +227,8 @@ class AxiTop:
             await self.write(
                 regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
             )
+        if min_area is not None:
+            await self.write(regs.MIN_AREA, min_area << regs.MIN_AREA_VALUE.lsb)
 
     async def soft_reset(self) -> None:
         """CMD.SOFT_RESET with its KEY (0x5A in bits 31:24)."""
@@ -250,16 +258,18 @@ class AxiTop:
         self,
         frames: Sequence[tuple[np.ndarray, int]],
         budgets: Sequence[tuple[int, int]] | None = None,
+        min_areas: Sequence[int] | None = None,
     ) -> None:
         """Send frames back to back; the size and threshold of frame i+1 (and its
-        BUDGET (cell, per_cell) when `budgets` is given) are written over AXI-Lite
-        once frame i's first line has gone in (so they take effect at frame i+1's
-        start of frame)."""
+        BUDGET (cell, per_cell) when `budgets` is given, its MIN_AREA when `min_areas`
+        is) are written over AXI-Lite once frame i's first line has gone in (so they
+        take effect at frame i+1's start of frame)."""
 
         async def configure(i: int) -> None:
             img, t = frames[i]
             budget = budgets[i] if budgets is not None else None
-            await self.configure(img.shape[1], img.shape[0], t, budget)
+            min_area = min_areas[i] if min_areas is not None else None
+            await self.configure(img.shape[1], img.shape[0], t, budget, min_area)
 
         await configure(0)
         for i, (img, _) in enumerate(frames):

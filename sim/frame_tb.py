@@ -13,7 +13,8 @@ Environment: SIM_FRAMES (.npz of uint8 HxW arrays, in order), SIM_THRESHOLDS
 (space-separated), SIM_TIMING (sim/timing.py's Timing.as_dict as JSON), SIM_OUT
 (JSON written at the end), SIM_PROGRESS (rewritten with "pixels_in pixels"),
 SIM_GENERICS (the top's generics), SIM_BUDGET ("CELL K": BUDGET written with
-every frame's registers; unset: not written).
+every frame's registers; unset: not written), SIM_MIN_AREA ("N": MIN_AREA written
+with every frame's registers; unset: not written).
 """
 
 from __future__ import annotations
@@ -120,7 +121,11 @@ async def write(axil: AxiLiteMaster, offset: int, value: int) -> None:
 
 
 async def configure(
-    axil: AxiLiteMaster, img: np.ndarray, threshold: int, budget: tuple[int, int] | None
+    axil: AxiLiteMaster,
+    img: np.ndarray,
+    threshold: int,
+    budget: tuple[int, int] | None,
+    min_area: int | None = None,
 ) -> None:
     """The frame's registers, in the fast engine's order (sim/verilator_harness.cpp)."""
     await write(axil, regs.WIDTH, img.shape[1])
@@ -130,6 +135,8 @@ async def configure(
         await write(
             axil, regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
         )
+    if min_area is not None:
+        await write(axil, regs.MIN_AREA, min_area << regs.MIN_AREA_VALUE.lsb)
     await write(axil, regs.THRESHOLD, threshold)
 
 
@@ -165,7 +172,9 @@ async def run_frames(dut):
 
     budget_env = os.environ.get("SIM_BUDGET", "")
     budget = tuple(int(v) for v in budget_env.split()) if budget_env else None
-    await configure(axil, images[0], thresholds[0], budget)
+    min_area_env = os.environ.get("SIM_MIN_AREA", "")
+    min_area = int(min_area_env) if min_area_env else None
+    await configure(axil, images[0], thresholds[0], budget, min_area)
     await RisingEdge(dut.aclk)
     # The source takes the frame at the next edge: pattern clock 0.
     run.start_ns = source.start_ns = get_sim_time("ns") + PERIOD_NS
@@ -174,7 +183,7 @@ async def run_frames(dut):
     for i in range(1, len(images)):
         # As the fast engine: once the previous frame's first line is in.
         await run.first_line_seen[i - 1].wait()
-        await configure(axil, images[i], thresholds[i], budget)
+        await configure(axil, images[i], thresholds[i], budget, min_area)
         for line in video_lines(images[i], ppc):
             await source.send(line)
     await run.done.wait()

@@ -3,11 +3,12 @@ the Python twin of the C decoder in sw/fastnms.c, with the same rules.
 
 A frame is the records up to and including one with LAST. Every record that is not
 EMPTY is a corner (x, y, score), an ABORTED one included (the record the soft reset
-closed the frame with). EMPTY is the only record of a frame without corners, with
-LAST and x = y = score = 0; with CTRL.LIVE = 1, records of earlier frames whose LAST
-record was dropped may precede it, and the LAST record then carries OVERFLOW. A
-record that breaks these rules marks its frame `malformed` (decoding goes on; the
-next LAST ends the frame). Bits above ORB are reserved and ignored.
+closed the frame with), with its AREA in `areas` (the region's corner pixels with the
+region NMS, saturating at 2047; 0 with the other NMS). EMPTY is the only record of a
+frame without corners, with LAST and x = y = score = area = 0; with CTRL.LIVE = 1,
+records of earlier frames whose LAST record was dropped may precede it, and the LAST
+record then carries OVERFLOW. A record that breaks these rules marks its frame
+`malformed` (decoding goes on; the next LAST ends the frame).
 
 Record format 2 (a build with DESCRIPTOR = "orb"): a record whose first word has ORB
 set is REC_ORB_BEATS words, the angle (float32 bits, beat 1) and the 32 descriptor
@@ -32,7 +33,8 @@ from . import regs
 
 Corner = tuple[int, int, int]
 
-_FIELDS = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask
+# The fields that are 0 in the EMPTY record.
+_FIELDS = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask | regs.REC_AREA.mask
 
 
 @dataclass
@@ -40,6 +42,7 @@ class Frame:
     index: int  # frames delivered by the decoder before this one
     first_word: int  # position of the frame's first record in the whole stream
     corners: list[Corner] = field(default_factory=list)  # (x, y, score), in output order
+    areas: list[int] = field(default_factory=list)  # AREA per corner (0 without region NMS)
     records: int = 0  # records of the frame, the EMPTY record included
     words: int = 0  # 64-bit words of the frame (= records unless ORB)
     angle_bits: list[int] = field(default_factory=list)  # ORB: float32 bits per corner
@@ -122,6 +125,7 @@ class RecordDecoder:
             frame.corners.append(
                 (regs.REC_X.get(word), regs.REC_Y.get(word), regs.REC_SCORE.get(word))
             )
+            frame.areas.append(regs.REC_AREA.get(word))
             if frame.orb:  # until its payload is complete
                 frame.angle_bits.append(0)
                 frame.descriptors.append(bytes(32))

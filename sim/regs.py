@@ -34,7 +34,7 @@ class Register(NamedTuple):
 
 ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 5, 0)
+MAP_VERSION = (0, 6, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,7 +44,7 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 5)
+VERSION_MINOR = Field(8, 8, "ro", 6)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
 # CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)
@@ -133,6 +133,12 @@ BUDGET = 0x3C
 BUDGET_PER_CELL = Field(0, 4, "rw", 0)
 BUDGET_CELL = Field(16, 9, "rw", 0x10)
 
+# MIN_AREA: The paper's region filtering (region NMS only; the other NMS ignore it): a region
+# with fewer corner pixels than VALUE has no record; for the frames whose first pixel is
+# accepted after the write's B response.
+MIN_AREA = 0x40
+MIN_AREA_VALUE = Field(0, 11, "rw", 0)
+
 # The corner record: tdata of m_axis_corners, 64 bits per beat; with the ORB payload
 # (record format 2) REC_ORB_BEATS beats. _BEAT: the beat that holds a field.
 REC_ORB_BEATS = 6
@@ -144,6 +150,7 @@ REC_LAST = Field(49, 1, "ro", 0)
 REC_ABORTED = Field(50, 1, "ro", 0)
 REC_OVERFLOW = Field(51, 1, "ro", 0)
 REC_ORB = Field(52, 1, "ro", 0)
+REC_AREA = Field(53, 11, "ro", 0)
 REC_ANGLE = Field(0, 32, "ro", 0)
 REC_ANGLE_BEAT = 1
 REC_DESCRIPTOR = Field(0, 64, "ro", 0)
@@ -207,6 +214,7 @@ REGISTERS: dict[str, Register] = {
     "DROPPED": Register(DROPPED, {"VALUE": DROPPED_VALUE}),
     "INPUT_STALLS": Register(INPUT_STALLS, {"VALUE": INPUT_STALLS_VALUE}),
     "BUDGET": Register(BUDGET, {"PER_CELL": BUDGET_PER_CELL, "CELL": BUDGET_CELL}),
+    "MIN_AREA": Register(MIN_AREA, {"VALUE": MIN_AREA_VALUE}),
 }
 
 

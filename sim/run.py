@@ -24,6 +24,7 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from fastnms.golden.nms import AREA_MAX
 from fastnms.golden.orb import PATCH_SIZE
 
 from . import regs, verilator
@@ -67,6 +68,9 @@ class FrameResult:
     last_record: int
     # The clock of each word of `words` (its handshake), on the same origin.
     word_clocks: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    # Per record in `records`' order: its AREA, the region's corner pixels (saturating at
+    # 2047) with the region NMS, 0 with the others.
+    areas: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     # With ORB (record format 2), per record in `records`' order: the angle's float32
     # bits and the 32 descriptor bytes; empty otherwise.
     angle_bits: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint32))
@@ -106,21 +110,22 @@ def check_size(
     return None
 
 
-def decode_frame(words: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One frame's record words (either record format) as (records (N, 3) int64, angle
-    bits (N,) uint32, descriptors (N, 32) uint8), sorted by y then x; the last two are
-    empty without ORB."""
+def decode_frame(words: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """One frame's record words (either record format) as (records (N, 3) int64, areas
+    (N,) int64, angle bits (N,) uint32, descriptors (N, 32) uint8), sorted by y then x;
+    the last two are empty without ORB."""
     frames = decode_records(int(w) for w in np.asarray(words, dtype=np.uint64))
     if len(frames) != 1 or not frames[0].complete or frames[0].malformed:
         raise SimError(f"a frame's records do not decode as one frame: {len(frames)} frames")
     frame = frames[0]
     recs = np.array(frame.corners, dtype=np.int64).reshape(-1, 3)
     order = np.lexsort((recs[:, 0], recs[:, 1]))
+    areas = np.array(frame.areas, dtype=np.int64)
     angles = np.array(frame.angle_bits, dtype=np.uint32)
     descriptors = np.frombuffer(b"".join(frame.descriptors), np.uint8).reshape(-1, 32)
     if frame.orb:
-        return recs[order], angles[order], descriptors[order]
-    return recs[order], angles[:0], descriptors[:0]
+        return recs[order], areas[order], angles[order], descriptors[order]
+    return recs[order], areas[order], angles[:0], descriptors[:0]
 
 
 def build_size(shapes: Sequence[tuple[int, int]]) -> tuple[int, int]:
@@ -170,13 +175,17 @@ def run_rtl(
     generics: dict[str, object] | None = None,
     power_up_seed: int | None = None,
     budget: tuple[int, int] | None = None,
+    min_area: int | None = None,
 ) -> SimResult:
     """Simulate fastnms_axi on `frames` (image, threshold), sent back to back.
     `progress(pixels_in, pixels, seconds)` is called about once a second;
     `announce(text)` before a build of the fast engine. `generics` overrides
     the build (default: MAX_WIDTH x MAX_HEIGHT with score and nms). `budget`
     (cell, per_cell) is written to BUDGET with every frame's registers (the
-    build needs MAX_PER_CELL > 0: generics_for(..., budget=True))."""
+    build needs MAX_PER_CELL > 0: generics_for(..., budget=True)). `min_area`
+    (0 .. 2047) is written to MIN_AREA with every frame's registers (the region
+    NMS drops the regions of fewer corner pixels; the others ignore it); None:
+    MIN_AREA is not written (its reset value 0 keeps every region)."""
     if not RTL.is_dir():
         raise SimError(f"the RTL is not beside {Path(__file__).parent} (needs the source tree)")
     if not frames:
@@ -184,19 +193,28 @@ def run_rtl(
     generics = generics or generics_for(score, nms, budget=budget is not None)
     if budget is not None and not int(generics.get("MAX_PER_CELL", 0)):
         raise SimError("a budget needs a build with the budget (MAX_PER_CELL > 0)")
+    if min_area is not None and (
+        isinstance(min_area, bool)
+        or not isinstance(min_area, int | np.integer)
+        or not 0 <= min_area <= AREA_MAX
+    ):
+        raise SimError(f"min_area must be an integer in 0..{AREA_MAX}, got {min_area!r}")
+    min_area = None if min_area is None else int(min_area)
     if engine == "verilator":
-        return _run_verilator(frames, generics, timing, progress, announce, power_up_seed, budget)
+        return _run_verilator(
+            frames, generics, timing, progress, announce, power_up_seed, budget, min_area
+        )
     if engine == "cocotb":
         if timing.hblank or timing.vblank:
             raise SimError("blanking (hblank, vblank) needs the verilator engine")
-        return _run_cocotb(frames, generics, timing, progress, budget)
+        return _run_cocotb(frames, generics, timing, progress, budget, min_area)
     raise SimError(f"unknown engine {engine!r}; choose from {', '.join(ENGINES)}")
 
 
 def _frame_results(frames, raw_frames) -> list[FrameResult]:
     results = []
     for (img, threshold), raw in zip(frames, raw_frames, strict=True):
-        records, angle_bits, descriptors = decode_frame(raw.words)
+        records, areas, angle_bits, descriptors = decode_frame(raw.words)
         results.append(
             FrameResult(
                 width=img.shape[1],
@@ -210,6 +228,7 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
                 last_pixel=raw.last_pixel,
                 last_record=raw.last_record,
                 word_clocks=raw.word_clocks,
+                areas=areas,
                 angle_bits=angle_bits,
                 descriptors=descriptors,
             )
@@ -218,7 +237,7 @@ def _frame_results(frames, raw_frames) -> list[FrameResult]:
 
 
 def _run_verilator(
-    frames, generics, timing, progress, announce, power_up_seed, budget
+    frames, generics, timing, progress, announce, power_up_seed, budget, min_area
 ) -> SimResult:
     try:
         exe, build_seconds = verilator.build(generics, announce)
@@ -232,7 +251,7 @@ def _run_verilator(
 
     try:
         ppc = int(generics.get("PPC", 1))
-        raw = verilator.run(exe, frames, timing, report, power_up_seed, ppc, budget)
+        raw = verilator.run(exe, frames, timing, report, power_up_seed, ppc, budget, min_area)
     except verilator.EngineError as e:
         raise SimError(f"the fast engine stopped: {e}") from None
     # The drivers send well-formed video: a malformed-frame flag or a frame
@@ -255,7 +274,7 @@ def _run_verilator(
     )
 
 
-def _run_cocotb(frames, generics, timing, progress, budget) -> SimResult:
+def _run_cocotb(frames, generics, timing, progress, budget, min_area) -> SimResult:
     name = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
     build_dir = BUILD / f"fastnms_axi-cli-{name}"
     build_dir.mkdir(parents=True, exist_ok=True)
@@ -285,6 +304,7 @@ def _run_cocotb(frames, generics, timing, progress, budget) -> SimResult:
                         "SIM_OUT": str(out),
                         "SIM_PROGRESS": str(progress_file),
                         "SIM_BUDGET": "" if budget is None else f"{budget[0]} {budget[1]}",
+                        "SIM_MIN_AREA": "" if min_area is None else str(min_area),
                     },
                     log_file=log,
                 )

@@ -209,17 +209,20 @@ def run(
     power_up_seed: int | None = None,
     ppc: int = 1,
     budget: tuple[int, int] | None = None,
+    min_area: int | None = None,
 ) -> RawRun:
     """Send `frames` (image, threshold) back to back through the executable, in
     beats of `ppc` pixels (the build's PPC generic), with BUDGET = `budget` (cell,
-    per_cell) written for every frame when given. `power_up_seed` randomises
-    the netlist's initial register and memory values."""
+    per_cell) and MIN_AREA = `min_area` written for every frame when given.
+    `power_up_seed` randomises the netlist's initial register and memory values."""
     with tempfile.TemporaryDirectory(dir=exe.parent) as tmp:
         job, pixels, records = Path(tmp, "job"), Path(tmp, "pixels"), Path(tmp, "records")
         lines = [f"seed {timing.seed}\n", f"hblank {timing.hblank}\n", f"vblank {timing.vblank}\n"]
         lines.append(f"ppc {ppc}\n")
         if budget is not None:
             lines.append(f"budget {budget[0]} {budget[1]}\n")
+        if min_area is not None:
+            lines.append(f"min_area {min_area}\n")
         lines += [timing.idle.job_line("idle"), timing.stall.job_line("stall")]
         with open(pixels, "wb") as f:
             for img, threshold in frames:

@@ -1,15 +1,16 @@
 // The fast simulation engine's driver: fastnms_axi as the netlist GHDL
 // synthesizes from rtl/, compiled by Verilator, driven clock by clock from C++
 // the way the cocotb bench drives it (sim/driver.py): reset, AXI4-Lite writes of
-// WIDTH, HEIGHT, THRESHOLD (and BUDGET), AXI4-Stream video in, corner records out.
-// sim/verilator.py builds it and reads what it writes.
+// WIDTH, HEIGHT, THRESHOLD (and BUDGET, MIN_AREA), AXI4-Stream video in, corner
+// records out. sim/verilator.py builds it and reads what it writes.
 //
 //   fastnms_vsim JOB PIXELS RECORDS [+verilator+... options]
 //
 // JOB (text, one setting per line):
 //   seed N | idle rate P | idle bits 0110.. | stall rate P | stall bits ..
-//   hblank N | vblank N | ppc N | budget CELL K | frame WIDTH HEIGHT THRESHOLD
-// (budget: BUDGET written with each frame's registers; none: not written)
+//   hblank N | vblank N | ppc N | budget CELL K | min_area N | frame WIDTH HEIGHT THRESHOLD
+// (budget, min_area: BUDGET, MIN_AREA written with each frame's registers; none: not
+// written)
 // PIXELS: the frames' pixels, raster order, one byte each, frame after frame;
 // they go in as beats of PPC pixels (the build's generic, `ppc` in the job;
 // default 1), pixel 0 of a beat in the low byte, as UG934 packs video.
@@ -83,8 +84,9 @@ int main(int argc, char** argv) {
   context->commandArgs(argc, argv);
 
   uint64_t seed = 1, hblank = 0, vblank = 0, ppc = 1;
-  bool budget = false;
+  bool budget = false, min_area = false;
   unsigned budget_cell = 16, budget_k = 0;
+  uint32_t min_area_value = 0;
   Pattern idle, stall;
   std::vector<FrameSpec> frames;
   {
@@ -108,7 +110,12 @@ int main(int argc, char** argv) {
         else if (std::strcmp(word, "hblank") == 0) hblank = n;
         else if (std::strcmp(word, "vblank") == 0) vblank = n;
         else if (std::strcmp(word, "ppc") == 0) ppc = n;
-        else fail("unknown job setting");
+        else if (std::strcmp(word, "min_area") == 0) {
+          if (n > FASTNMS_MIN_AREA_VALUE_MASK >> FASTNMS_MIN_AREA_VALUE_SHIFT)
+            fail("min_area out of range");
+          min_area = true;
+          min_area_value = static_cast<uint32_t>(n);
+        } else fail("unknown job setting");
       }
     }
     std::fclose(job);
@@ -211,6 +218,9 @@ int main(int argc, char** argv) {
       writes.push_back({FASTNMS_BUDGET_OFFSET,
                         budget_cell << FASTNMS_BUDGET_CELL_SHIFT | budget_k << FASTNMS_BUDGET_PER_CELL_SHIFT,
                         configured});
+    if (min_area)
+      writes.push_back(
+          {FASTNMS_MIN_AREA_OFFSET, min_area_value << FASTNMS_MIN_AREA_VALUE_SHIFT, configured});
     writes.push_back({FASTNMS_THRESHOLD_OFFSET, frames[i].threshold, i + 1});
   };
   queue_config(0);

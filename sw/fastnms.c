@@ -106,7 +106,8 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
     const bool aborted = (word & FASTNMS_REC_ABORTED_MASK) != 0u;
     const bool overflow = (word & FASTNMS_REC_OVERFLOW_MASK) != 0u;
     const bool orb = (word & FASTNMS_REC_ORB_MASK) != 0u;
-    const uint64_t fields = FASTNMS_REC_X_MASK | FASTNMS_REC_Y_MASK | FASTNMS_REC_SCORE_MASK;
+    const uint64_t fields = FASTNMS_REC_X_MASK | FASTNMS_REC_Y_MASK | FASTNMS_REC_SCORE_MASK |
+                            FASTNMS_REC_AREA_MASK;
 
     if (dec->words == 0u)
         dec->first_word = dec->position;
@@ -126,7 +127,7 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
     dec->payload_slot = SIZE_MAX;
 
     if (empty) {
-        /* The only record of its frame, with LAST, all fields 0; records of
+        /* The only record of its frame, with LAST, all fields 0 (AREA too); records of
          * earlier frames may precede it when their LAST was dropped (OVERFLOW). */
         dec->flags |= FASTNMS_FRAME_EMPTY;
         if (!last || aborted || (word & fields) != 0u || (dec->records != 1u && !overflow))
@@ -138,6 +139,7 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
             c->x = (uint16_t)FIELD(word, REC_X);
             c->y = (uint16_t)FIELD(word, REC_Y);
             c->score = (uint16_t)FIELD(word, REC_SCORE);
+            c->area = (uint16_t)FIELD(word, REC_AREA);
             dec->payload_slot = dec->stored;
             if (dec->frame_orb && dec->orb_storage != NULL) {
                 const struct fastnms_orb zero = {0};
@@ -340,6 +342,16 @@ int fastnms_set_budget(const struct fastnms_regs_io *io, uint32_t cell, uint32_t
         return FASTNMS_ERR_RANGE;
     wr(io, FASTNMS_BUDGET_OFFSET,
        cell << FASTNMS_BUDGET_CELL_SHIFT | per_cell << FASTNMS_BUDGET_PER_CELL_SHIFT);
+    return FASTNMS_OK;
+}
+
+int fastnms_set_min_area(const struct fastnms_regs_io *io, uint32_t min_area)
+{
+    if (!usable(io))
+        return FASTNMS_ERR_ARG;
+    if (min_area > FASTNMS_AREA_MAX)
+        return FASTNMS_ERR_RANGE;
+    wr(io, FASTNMS_MIN_AREA_OFFSET, min_area << FASTNMS_MIN_AREA_VALUE_SHIFT);
     return FASTNMS_OK;
 }
 

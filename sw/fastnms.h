@@ -48,7 +48,12 @@ struct fastnms_corner {
     uint16_t x;     /* column, 3 .. WIDTH-4 */
     uint16_t y;     /* row, 3 .. HEIGHT-4 */
     uint16_t score; /* 8 bits (opencv) or 12 bits (sad) */
+    uint16_t area;  /* region NMS: the region's corner pixels, saturating at 2047
+                       (FASTNMS_AREA_MAX); 0 with the other NMS */
 };
+
+/* The largest AREA of a record and MIN_AREA (11 bits). */
+#define FASTNMS_AREA_MAX (FASTNMS_MIN_AREA_VALUE_MASK >> FASTNMS_MIN_AREA_VALUE_SHIFT)
 
 /* A keypoint's ORB payload (record format 2, a build with DESCRIPTOR = "orb"). */
 struct fastnms_orb {
@@ -202,6 +207,12 @@ int fastnms_configure(const struct fastnms_regs_io *io, uint32_t width, uint32_t
  * FASTNMS_ERR_RANGE, and nothing written, unless cell is 16, 32, 64, 128 or 256
  * and per_cell <= BUILD.MAX_PER_CELL (0 in a build without the budget). */
 int fastnms_set_budget(const struct fastnms_regs_io *io, uint32_t cell, uint32_t per_cell);
+
+/* Write MIN_AREA: the region NMS drops the regions of fewer than `min_area` corner
+ * pixels (0 and 1 keep every region; the other NMS ignore it), applied like
+ * fastnms_configure. FASTNMS_ERR_RANGE, and nothing written, unless
+ * min_area <= FASTNMS_AREA_MAX. */
+int fastnms_set_min_area(const struct fastnms_regs_io *io, uint32_t min_area);
 
 /* CTRL, read-modify-write of one bit, the other CTRL fields kept (reserved bits
  * written as 0). */

@@ -8,7 +8,7 @@
 #ifndef FASTNMS_REGS_H
 #define FASTNMS_REGS_H
 
-#define FASTNMS_VERSION_STRING "0.5.0"
+#define FASTNMS_VERSION_STRING "0.6.0"
 
 /* ID: Identification: the constant 0x46415354 ("FAST" in ASCII). */
 #define FASTNMS_ID_OFFSET      0x00u
@@ -23,7 +23,7 @@
 #define FASTNMS_VERSION_PATCH_RESET 0x0u
 #define FASTNMS_VERSION_MINOR_SHIFT 8u
 #define FASTNMS_VERSION_MINOR_MASK  0x0000FF00u
-#define FASTNMS_VERSION_MINOR_RESET 0x5u
+#define FASTNMS_VERSION_MINOR_RESET 0x6u
 #define FASTNMS_VERSION_MAJOR_SHIFT 16u
 #define FASTNMS_VERSION_MAJOR_MASK  0x00FF0000u
 #define FASTNMS_VERSION_MAJOR_RESET 0x0u
@@ -168,6 +168,14 @@
 #define FASTNMS_BUDGET_CELL_MASK      0x01FF0000u
 #define FASTNMS_BUDGET_CELL_RESET     0x10u
 
+/* MIN_AREA: The paper's region filtering (region NMS only; the other NMS ignore it): a */
+/* region with fewer corner pixels than VALUE has no record; for the frames whose first pixel */
+/* is accepted after the write's B response. */
+#define FASTNMS_MIN_AREA_OFFSET      0x40u
+#define FASTNMS_MIN_AREA_VALUE_SHIFT 0u
+#define FASTNMS_MIN_AREA_VALUE_MASK  0x000007FFu
+#define FASTNMS_MIN_AREA_VALUE_RESET 0x0u
+
 /* The corner record: tdata of m_axis_corners, 64 bits per beat; with the ORB
  * payload (record format 2) _ORB_BEATS beats. _BEAT: the beat that holds a field. */
 #define FASTNMS_REC_ORB_BEATS        6u
@@ -187,6 +195,8 @@
 #define FASTNMS_REC_OVERFLOW_MASK    0x0008000000000000ull
 #define FASTNMS_REC_ORB_SHIFT        52u
 #define FASTNMS_REC_ORB_MASK         0x0010000000000000ull
+#define FASTNMS_REC_AREA_SHIFT       53u
+#define FASTNMS_REC_AREA_MASK        0xFFE0000000000000ull
 #define FASTNMS_REC_ANGLE_SHIFT      0u
 #define FASTNMS_REC_ANGLE_MASK       0x00000000FFFFFFFFull
 #define FASTNMS_REC_ANGLE_BEAT       1u

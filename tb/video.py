@@ -57,17 +57,20 @@ def record_mismatch(got: list, want: list, label: str) -> str:
     return f"{label}: equal"
 
 
-def split_records(beats: list[dict[str, int]]) -> list[list[tuple[int, int, int]]]:
-    """Record beats (x, y, score) grouped into frames, each closed by an
-    end-of-frame beat; a trailing group without its end is dropped."""
-    frames: list[list[tuple[int, int, int]]] = []
-    current: list[tuple[int, int, int]] = []
+def split_records(
+    beats: list[dict[str, int]], fields: tuple[str, ...] = ("x", "y", "score")
+) -> list[list[tuple[int, ...]]]:
+    """Record beats (their `fields`, x, y, score by default) grouped into
+    frames, each closed by an end-of-frame beat; a trailing group without its
+    end is dropped."""
+    frames: list[list[tuple[int, ...]]] = []
+    current: list[tuple[int, ...]] = []
     for beat in beats:
         if beat["eof"]:
             frames.append(current)
             current = []
         else:
-            current.append((beat["x"], beat["y"], beat["score"]))
+            current.append(tuple(beat[f] for f in fields))
     return frames
 
 

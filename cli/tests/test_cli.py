@@ -35,11 +35,15 @@ def grey_image(tmp_path: Path, rng: np.random.Generator) -> tuple[Path, np.ndarr
     return path, img
 
 
-def read_csv(path: Path) -> np.ndarray:
+def read_csv(path: Path, area: bool = False) -> np.ndarray:
+    """x,y,score; with `area` (a region NMS) x,y,score,area."""
+    header = ["x", "y", "score", *(["area"] if area else [])]
     with path.open(newline="") as f:
         rows = list(csv.reader(f))
-    assert rows[0] == ["x", "y", "score"]
-    return np.array([[int(v) for v in row] for row in rows[1:]], dtype=np.int64).reshape(-1, 3)
+    assert rows[0] == header
+    return np.array([[int(v) for v in row] for row in rows[1:]], dtype=np.int64).reshape(
+        -1, len(header)
+    )
 
 
 def run(argv: list[str], capsys: pytest.CaptureFixture) -> tuple[int, str, str]:
@@ -69,13 +73,15 @@ def test_golden_writes_csv_and_png(grey_image, tmp_path: Path, capsys, score: st
     argv = ["golden", str(path), "-t", "12", "--score", score, "--nms", nms]
     status, out, err = run([*argv, "--csv", str(out_csv), "--png", str(out_png)], capsys)
     assert (status, err) == (0, "")
-    expected = detect(img, 12, score, nms)
+    region = nms.startswith("region")
+    expected = detect(img, 12, score, nms, with_area=region)
     assert len(expected) > 0
     m = SUMMARY.match(out.rstrip("\n"))
     assert m and out.count("\n") == 1, out
     assert m["name"] == "noise.png" and (m["w"], m["h"]) == ("90", "70")
     assert (m["score"], m["nms"], m["t"], int(m["n"])) == (score, nms, "12", len(expected))
-    assert np.array_equal(read_csv(out_csv), expected)
+    # The region NMS's records with the area of their region (a fourth column).
+    assert np.array_equal(read_csv(out_csv, area=region), expected)
 
     png = cv2.imread(str(out_png), cv2.IMREAD_UNCHANGED)
     assert png.shape == (70, 90, 3)
@@ -87,7 +93,7 @@ def test_golden_writes_csv_and_png(grey_image, tmp_path: Path, capsys, score: st
         assert png[y - 3, x - 3].tolist() == list(cli.HIGH_BGR)
         assert png[y + 3, x + 3].tolist() == list(cli.HIGH_BGR)
     untouched = np.ones(img.shape, bool)
-    for cx, cy, _ in expected.tolist():
+    for cx, cy, *_ in expected.tolist():
         untouched[max(cy - 3, 0) : cy + 4, max(cx - 3, 0) : cx + 4] = False
     assert untouched.any()
     assert np.array_equal(png[untouched], np.repeat(img[untouched][:, None], 3, axis=1))
@@ -152,6 +158,15 @@ BAD_ARGS = {
     "unknown_score": ["--score", "harris"],
     "unknown_nms": ["--nms", "5x5"],
     "unknown_option": ["--frobnicate"],
+    "min_area_word": ["--nms", "region8", "--min-area", "abc"],
+    "min_area_negative": ["--nms", "region8", "--min-area", "-1"],
+    "min_area_2048": ["--nms", "region4", "--min-area", "2048"],
+    "min_area_fraction": ["--nms", "region4", "--min-area", "2.5"],
+    "min_area_empty": ["--nms", "region4", "--min-area", ""],
+    "min_area_without_nms": ["--min-area", "3"],  # the default NMS is 3x3
+    "min_area_3x3": ["--nms", "3x3", "--min-area", "3"],
+    "min_area_none": ["--nms", "none", "--min-area", "0"],
+    "min_area_orb": ["--nms", "region8", "--min-area", "3", "--orb"],
 }
 
 
@@ -443,3 +458,58 @@ def test_golden_bad_budget(textured_image, tmp_path: Path, capsys, bad: list[str
     status, out, err = run(["golden", str(path), *bad, "--csv", str(out_csv)], capsys)
     assert_usage_error(status, out, err)
     assert not out_csv.exists()
+
+
+# ---- --min-area --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("nms", ["region4", "region8"])
+def test_golden_min_area(grey_image, tmp_path: Path, capsys, nms: str):
+    """--min-area N: the golden model's regions of N corner pixels or more, each record
+    with its area; 0 and 1 keep every region, as without the option; 2047 the largest."""
+    path, img = grey_image
+    every = detect(img, 8, "opencv", nms, with_area=True)
+    areas = every[:, 3]
+    assert len(every) and areas.max() >= 4 and (areas == 1).any(), "a weak test image"
+    for n in [0, 1, 2, 4, int(areas.max()), int(areas.max()) + 1, 2047]:
+        out_csv = tmp_path / f"m{n}.csv"
+        argv = ["golden", str(path), "-t", "8", "--nms", nms, "--min-area", str(n)]
+        status, out, err = run([*argv, "--csv", str(out_csv)], capsys)
+        assert (status, err) == (0, ""), err
+        want = every[areas >= n]
+        assert np.array_equal(want, detect(img, 8, "opencv", nms, n, with_area=True))
+        got = read_csv(out_csv, area=True)
+        assert np.array_equal(got, want), f"min-area {n}"
+        assert f"threshold=8 min-area={n}: {len(want)} corners in " in out, out
+    assert np.array_equal(read_csv(tmp_path / "m1.csv", area=True), every)
+    assert read_csv(tmp_path / "m2047.csv", area=True).shape == (0, 4)
+    # Without --min-area: every region, and the summary as before.
+    status, out, _ = run(["golden", str(path), "-t", "8", "--nms", nms], capsys)
+    assert status == 0 and SUMMARY.match(out.strip())["n"] == str(len(every))
+
+
+def test_golden_min_area_with_a_budget(textured_image, tmp_path: Path, capsys):
+    """The budget after the region filtering: each kept record with its own area."""
+    path, img = textured_image
+    out_csv = tmp_path / "b.csv"
+    argv = ["golden", str(path), "-t", "5", "--nms", "region8", "--min-area", "3"]
+    status, out, err = run(
+        [*argv, "--cell", "32", "--per-cell", "2", "--csv", str(out_csv)], capsys
+    )
+    assert (status, err) == (0, "")
+    regions = detect(img, 5, "opencv", "region8", 3, with_area=True)
+    want = cell_budget(regions[:, :3], 32, 2)
+    got = read_csv(out_csv, area=True)
+    assert np.array_equal(got[:, :3], want) and 0 < len(want) < len(regions)
+    area = {(x, y): a for x, y, _, a in regions.tolist()}
+    assert [a for x, y, _, a in got.tolist()] == [area[(x, y)] for x, y, _ in want.tolist()]
+    assert (got[:, 3] >= 3).all()
+
+
+def test_min_area_in_the_help(capsys):
+    for command in ("golden", "sim", "compare"):
+        with pytest.raises(SystemExit):
+            cli.main([command, "--help"])
+        text = " ".join(capsys.readouterr().out.split())
+        assert "--min-area N" in text and "0..2047" in text, command
+        assert "x,y,score,area" in text, command

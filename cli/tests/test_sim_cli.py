@@ -156,6 +156,12 @@ def test_several_frames_from_a_video(photo: Path, tmp_path: Path):
         (["--orb", "--cell", "64", "--per-cell", "2", "IMG"], "--orb takes --cell 16 or 32"),
         (["--orb", "--cell", "16", "--per-cell", "2", "--ppc", "2", "IMG"], "--orb needs --ppc 1"),
         (["--orb", "--cell", "16", "--per-cell", "2", "--nms", "region4", "IMG"], "3x3 or none"),
+        (["--min-area", "3", "IMG"], "--min-area needs --nms region4 or region8"),
+        (["--nms", "none", "--min-area", "0", "IMG"], "--min-area needs --nms region4"),
+        (["--nms", "region8", "--min-area", "2048", "IMG"], "min-area must be an integer in"),
+        (["--nms", "region8", "--min-area", "x", "IMG"], "min-area must be an integer in"),
+        (["--nms", "region8", "--min-area", "-5", "IMG"], "min-area must be an integer in"),
+        (["--nms", "region4", "--min-area", "3", "--ppc", "4", "IMG"], "--ppc 4 needs --nms"),
     ],
 )
 def test_sim_usage_errors(photo: Path, tmp_path: Path, capsys, argv, message):
@@ -324,3 +330,149 @@ def test_sim_bad_input(tmp_path: Path, capsys):
     assert capsys.readouterr().err.startswith("fastnms: error: ")
     assert cli.main(["compare", str(tmp_path / "missing.png")]) == 2
     assert capsys.readouterr().err.startswith("fastnms: error: ")
+
+
+# ---- --min-area, without an engine ---------------------------------------------------------
+
+
+@pytest.mark.parametrize("command", ["sim", "compare"])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        ["--min-area", "3"],
+        ["--nms", "3x3", "--min-area", "1"],
+        ["--nms", "region4", "--min-area", "2048"],
+        ["--nms", "region4", "--min-area", "1e3"],
+        ["--nms", "region4", "--min-area", "3", "--orb", "--cell", "16", "--per-cell", "2"],
+    ],
+)
+def test_min_area_usage_errors(photo: Path, tmp_path: Path, capsys, monkeypatch, command, bad):
+    """One `fastnms: error:` line, exit status 2, no output file, and no engine started."""
+
+    def no_engine(*args, **kwargs):
+        raise AssertionError("the engine was started")
+
+    monkeypatch.setattr(cli, "run_rtl", no_engine)
+    out_csv = tmp_path / "c.csv"
+    status, out, err = run([command, str(photo), *bad, "--csv", str(out_csv)], capsys)
+    assert status == 2 and out == "" and err.startswith("fastnms: error: ")
+    assert err.count("\n") == 1 and "min-area" in err
+    assert not out_csv.exists()
+
+
+def record_words(records: np.ndarray) -> np.ndarray:
+    """The record words of one frame of (x, y, score, area) records, as the IP emits them."""
+    from fastnms.sim import regs
+
+    if len(records) == 0:
+        return np.array([regs.REC_EMPTY.mask | regs.REC_LAST.mask], dtype=np.uint64)
+    words = [
+        x << regs.REC_X.lsb | y << regs.REC_Y.lsb | s << regs.REC_SCORE.lsb | a << regs.REC_AREA.lsb
+        for x, y, s, a in records.tolist()
+    ]
+    words[-1] |= regs.REC_LAST.mask
+    return np.array(words, dtype=np.uint64)
+
+
+@pytest.fixture
+def golden_engine(monkeypatch) -> list[dict]:
+    """run_rtl replaced by the golden model's region records (with their areas, filtered
+    by min_area) encoded as record words and decoded as the engines' are: the command
+    line's plumbing of --min-area without an engine. Gives the calls' keyword arguments."""
+    from fastnms.sim.verilator import RawFrame
+
+    calls: list[dict] = []
+
+    def fake_run_rtl(frames, score, nms, **kwargs):
+        calls.append(kwargs)
+        min_area = kwargs.get("min_area")
+        raw = []
+        for img, t in frames:
+            records = detect(img, t, score, nms, min_area or 0, with_area=True)
+            words = record_words(records)
+            clocks = np.arange(len(words), dtype=np.int64)
+            raw.append(RawFrame(0, img.size - 1, img.size + len(words), words, 0, clocks))
+        results = sim._frame_results(frames, raw)
+        return sim.SimResult(results, 1000, 0, 0.1, kwargs.get("engine", "verilator"))
+
+    monkeypatch.setattr(cli, "run_rtl", fake_run_rtl)
+    return calls
+
+
+def read_area_csv(path: Path, frame: bool = False) -> list[tuple[int, ...]]:
+    names = ["frame"] * frame + ["x", "y", "score", "area"]
+    with open(path) as f:
+        reader = csv.DictReader(f)
+        assert reader.fieldnames == names
+        return [tuple(int(r[n]) for n in names) for r in reader]
+
+
+@pytest.mark.parametrize("nms", ["region4", "region8"])
+def test_sim_min_area_plumbing(photo: Path, tmp_path: Path, capsys, golden_engine, nms: str):
+    """--min-area N reaches run_rtl as min_area (None without it); the CSV has the
+    records' areas (decoded from AREA), the JSON min_area, the summary min-area=N."""
+    img = cv2.imread(str(photo), cv2.IMREAD_GRAYSCALE)
+    every = detect(img, 10, "opencv", nms, with_area=True)
+    assert len(every) and every[:, 3].max() >= 3 and (every[:, 3] < 3).any(), "a weak test"
+    out_csv, out_json = tmp_path / "c.csv", tmp_path / "c.json"
+    argv = ["sim", str(photo), "-t", "10", "--nms", nms, "--csv", str(out_csv)]
+    assert cli.main([*argv, "--json", str(out_json), "--min-area", "3"]) == 0
+    assert golden_engine[-1]["min_area"] == 3
+    want = [tuple(r) for r in every[every[:, 3] >= 3].tolist()]
+    assert read_area_csv(out_csv) == want
+    assert json.loads(out_json.read_text())["min_area"] == 3
+    assert f"threshold=10 min-area=3: {len(want)} corners;" in capsys.readouterr().out
+
+    assert cli.main([*argv, "--json", str(out_json)]) == 0
+    assert golden_engine[-1]["min_area"] is None
+    assert read_area_csv(out_csv) == [tuple(r) for r in every.tolist()]
+    assert json.loads(out_json.read_text())["min_area"] is None
+
+    # Several frames: the CSV's first column is the frame.
+    two = ["sim", str(photo), str(photo), *argv[2:]]
+    assert cli.main([*two, "--min-area", "2047"]) == 0
+    assert read_area_csv(out_csv, frame=True) == []
+    assert cli.main([*two, "--min-area", "2"]) == 0
+    twice = [(i, *r) for i in range(2) for r in every[every[:, 3] >= 2].tolist()]
+    assert read_area_csv(out_csv, frame=True) == twice
+    # The other NMS: no area column, MIN_AREA not written.
+    assert cli.main(["sim", str(photo), "-t", "10", "--csv", str(out_csv)]) == 0
+    assert golden_engine[-1]["min_area"] is None
+    with open(out_csv) as f:
+        assert f.readline() == "x,y,score\n"
+
+
+def test_compare_min_area_checks_the_areas(photo: Path, capsys, golden_engine, monkeypatch):
+    """compare with a region NMS: the golden model filtered by --min-area, and the
+    records' areas compared too (one area off is a difference)."""
+    argv = ["compare", str(photo), "-t", "10", "--nms", "region8", "--min-area", "2"]
+    capsys.readouterr()
+    assert cli.main(argv) == 0
+    out = capsys.readouterr().out
+    assert "rtl vs golden model: identical" in out and "with their areas" in out
+    assert golden_engine[-1]["min_area"] == 2
+
+    fake = cli.run_rtl
+
+    def one_area_off(*args, **kwargs):
+        result = fake(*args, **kwargs)
+        result.frames[0].areas[0] += 1
+        return result
+
+    monkeypatch.setattr(cli, "run_rtl", one_area_off)
+    assert cli.main(argv) == 1
+    out = capsys.readouterr().out
+    assert "DIFFERENT" in out and "rtl only" in out and "reference only" in out
+    # The regions the golden model drops are a difference too.
+    monkeypatch.setattr(cli, "run_rtl", fake)
+    assert cli.main([*argv[:-1], "3"]) == 0
+    golden_engine.clear()
+
+    def unfiltered(frames, score, nms, **kwargs):
+        return fake(frames, score, nms, **{**kwargs, "min_area": None})
+
+    monkeypatch.setattr(cli, "run_rtl", unfiltered)
+    capsys.readouterr()
+    assert cli.main(argv) == 1
+    out = capsys.readouterr().out
+    assert "DIFFERENT" in out and "rtl only" in out and "reference only" not in out

@@ -131,19 +131,27 @@ def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
     slot_bits = bits_for(slots)
     x_bits, y_bits = clog2(max_width), bits_for(max_height)
     key_bits = score_bits + x_bits + y_bits
+    # A class's area beside its key: the count (the record's AREA_BITS, 11) and the flag
+    # set once it has saturated (rtl/nms/fastnms_nms_region_keys.vhd).
+    area_bits = 11
+    data_bits = key_bits + area_bits + 1
     stack_words = max((max_width + 1) // 4 + 1 - 2, 1)
     rows = [
         ("row memory (the previous row's corner bits, two columns per word; LUT RAM)", slots, 2),
         ("head table (first run of its class?, by row parity and slot; LUT RAM)", 2 * slots, 1),
         ("last table (last run of its class?, by slot; LUT RAM)", slots, 1),
-        ("data table (best key of the class, by slot; the paper's RAM score)", slots, key_bits),
         (
-            "stack of open classes, slots and keys (below its three registers)",
+            "data table (best key and area of the class, by slot; the paper's RAM score)",
+            slots,
+            data_bits,
+        ),
+        (
+            "stack of open classes, slots, keys and areas (below its three registers)",
             stack_words,
-            2 * slot_bits + key_bits,
+            2 * slot_bits + data_bits,
         ),
         ("stack of open classes, flags (LUT RAM)", stack_words, 3),
-        ("record FIFO (LUT RAM)", 8, 1 + x_bits + y_bits + score_bits),
+        ("record FIFO (LUT RAM)", 8, 1 + x_bits + y_bits + score_bits + area_bits),
     ]
     breakdown = [{"memory": m, "words": n, "bits_per_word": b, "bits": n * b} for m, n, b in rows]
     index_bits = clog2(max_width // 2)

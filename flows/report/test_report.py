@@ -107,7 +107,7 @@ def check_report(summary, info, tmp_path):
     assert "Not run yet" not in both
     assert "1.00 pixel per clock" in both
     assert "### 3840x2160 at 4 pixels per clock" in both and "| 0.25000 | 2 073 604 |" in both
-    assert "| **total** |  | **65 023** |" in both
+    assert "| **total** |  | **82 379** |" in both
     # The engines' speeds and the build times.
     assert "| fast (GHDL netlist + Verilator) |" in both and "| cocotb (GHDL + cocotb) |" in both
     assert "| 14 s |" in both and "| cached |" in both
@@ -124,10 +124,10 @@ def test_region_memory_breakdown():
     mem = bench_sim.region_memory(1920, 1080, 12)
     # 960 slots of 10 bits; the row's bits two columns per word (960 x 2); a head bit per
     # slot and row parity, a last bit per slot; keys
-    # of 12 + 11 + 11 bits; 479 stack words of 2 x 10 + 34 bits (slots and key) and of
-    # 3 bits (flags); 8 records of 1 + 11 + 11 + 12 bits.
-    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 32640, 25866, 1437, 280]
-    assert mem["total_bits"] == 65023
+    # of 12 + 11 + 11 bits with an area of 11 + 1 bits; 479 stack words of 2 x 10 + 46 bits
+    # (slots, key and area) and of 3 bits (flags); 8 records of 1 + 11 + 11 + 12 + 11 bits.
+    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 44160, 31614, 1437, 368]
+    assert mem["total_bits"] == 82379
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200
 

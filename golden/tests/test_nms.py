@@ -6,7 +6,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
-from fastnms.golden.nms import nms_3x3, nms_none, nms_region
+from fastnms.golden.nms import AREA_MAX, nms_3x3, nms_none, nms_region
 from fastnms.testing.regions import SHAPES, grid, records, serpentine, square_spiral
 from scipy import ndimage
 
@@ -23,24 +23,29 @@ def cv2_labels(corner: np.ndarray, connectivity: int) -> np.ndarray:
 
 
 def region_reference(corner: np.ndarray, score: np.ndarray, labels: np.ndarray) -> np.ndarray:
-    """Per label: the highest score, the first pixel in raster order on ties."""
+    """Per label: the highest score, the first pixel in raster order on ties; then the
+    label's pixel count, saturated at AREA_MAX (x, y, score, area)."""
     ys, xs = np.nonzero(corner)  # raster order
     lab, sc = labels[ys, xs], score[ys, xs].astype(np.int64)
     order = np.lexsort((np.arange(ys.size), -sc, lab))
     head = np.ones(order.size, dtype=bool)
     head[1:] = lab[order][1:] != lab[order][:-1]
     pick = np.sort(order[head])
-    return np.stack([xs[pick], ys[pick], sc[pick]], axis=1).astype(np.int64).reshape(-1, 3)
+    area = np.minimum(np.bincount(labels.ravel())[lab[pick]], AREA_MAX)
+    return np.stack([xs[pick], ys[pick], sc[pick], area], axis=1).astype(np.int64).reshape(-1, 4)
 
 
-def assert_region_matches_references(corner, score, msg=""):
+def assert_region_matches_references(corner, score, msg="", min_area=0):
     for connectivity in (4, 8):
-        got = nms_region(corner, score, connectivity)
+        got = nms_region(corner, score, connectivity, min_area=min_area, with_area=True)
         ref_scipy = region_reference(corner, score, scipy_labels(corner, connectivity))
         ref_cv2 = region_reference(corner, score, cv2_labels(corner, connectivity))
         assert np.array_equal(ref_scipy, ref_cv2), "the two references disagree"
-        assert got.dtype == np.int64 and got.shape[1] == 3
-        assert np.array_equal(got, ref_scipy), f"region{connectivity} {msg}"
+        ref = ref_scipy[ref_scipy[:, 3] >= min_area]
+        assert got.dtype == np.int64 and got.shape[1] == 4
+        assert np.array_equal(got, ref), f"region{connectivity} min_area {min_area} {msg}"
+        plain = nms_region(corner, score, connectivity, min_area=min_area)
+        assert np.array_equal(plain, ref[:, :3]), "without with_area: the same records"
 
 
 def test_region_random_masks(rng: np.random.Generator, seed):
@@ -52,7 +57,8 @@ def test_region_random_masks(rng: np.random.Generator, seed):
         score = rng.integers(0, top + 1, (h, w)).astype(np.int32)
         if trial % 3 == 0:
             score[~corner] = 0  # as fast_maps produces; otherwise non-corner noise is ignored
-        assert_region_matches_references(corner, score, f"trial {trial} seed {seed}")
+        min_area = [0, 1, 2, 3, 5, 40][trial % 6]
+        assert_region_matches_references(corner, score, f"trial {trial} seed {seed}", min_area)
 
 
 @pytest.mark.parametrize("shape", ["serpentine", "spiral", "comb"])
@@ -104,6 +110,29 @@ def test_region_full_image_single_record(rng: np.random.Generator, seed):
     expected = [[int(x), int(y), int(score[y, x])]]
     assert nms_region(corner, score, 4).tolist() == expected, f"seed {seed}"
     assert nms_region(corner, score, 8).tolist() == expected, f"seed {seed}"
+    assert nms_region(corner, score, 8, with_area=True).tolist() == [expected[0] + [17 * 23]]
+    assert nms_region(corner, score, 8, min_area=17 * 23).tolist() == expected
+    assert nms_region(corner, score, 8, min_area=17 * 23 + 1).tolist() == []
+
+
+def test_region_area_saturates():
+    """An area above AREA_MAX reads AREA_MAX, and MIN_AREA = AREA_MAX keeps that region."""
+    corner = np.zeros((50, 60), dtype=bool)
+    corner[:45, :] = True  # 2700 pixels
+    corner[47, 5:8] = True  # 3 pixels
+    score = corner.astype(np.int32)
+    got = nms_region(corner, score, 4, with_area=True).tolist()
+    assert got == [[0, 0, 1, AREA_MAX], [5, 47, 1, 3]]
+    assert nms_region(corner, score, 4, min_area=AREA_MAX).tolist() == [[0, 0, 1]]
+    assert nms_region(corner, score, 4, min_area=4).tolist() == [[0, 0, 1]]
+    assert nms_region(corner, score, 4, min_area=3).tolist() == [[0, 0, 1], [5, 47, 1]]
+
+
+@pytest.mark.parametrize("bad", [-1, AREA_MAX + 1, 2.0, "3", True, None])
+def test_region_min_area_out_of_range(bad):
+    corner = np.ones((3, 3), dtype=bool)
+    with pytest.raises(ValueError, match="min_area"):
+        nms_region(corner, corner.astype(np.int32), 8, min_area=bad)
 
 
 # ---- 3x3 (OpenCV's rule) ----------------------------------------------------------------

@@ -16,7 +16,7 @@ def run(frames, connectivity, max_width=None, **timing):
     model = RegionStream(connectivity, max_width or max(c.shape[1] for c, _ in frames))
     per_frame, eof_clocks = model.run(frames, **timing)
     for i, ((corner, score), got) in enumerate(zip(frames, per_frame, strict=True)):
-        want = sorted(map(tuple, nms_region(corner, score, connectivity).tolist()))
+        want = sorted(map(tuple, nms_region(corner, score, connectivity, with_area=True).tolist()))
         assert sorted(got) == want, f"frame {i} ({corner.shape[1]}x{corner.shape[0]})"
     return model, eof_clocks
 

@@ -27,6 +27,12 @@
 -- it (asserted). MAX_PER_CELL = 0 builds no budget and ignores cfg_cell_log
 -- and cfg_per_cell.
 --
+-- With the region NMS, each record carries its region's area (out_area:
+-- corner pixels, saturating at 2047; 0 with the other NMS and on the
+-- end-of-frame beat), and the paper's region filtering drops the regions
+-- with fewer than cfg_min_area pixels (taken with the start-of-frame beat
+-- like the threshold; 0 and 1 keep every region; the other NMS ignore it).
+--
 -- With DESCRIPTOR = "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0, all
 -- asserted), the records are ORB keypoints (docs/orb_rtl.md, *In the core*):
 -- the NMS's records 31 pixels or more inside the frame (ORB's border), then
@@ -53,6 +59,7 @@ library ieee;
 library work;
   use work.fastnms_pkg.all;
   use work.fastnms_fast_pkg.all;
+  use work.fastnms_nms_region_pkg.area_bits;
 
 entity fastnms_core is
   generic (
@@ -75,6 +82,7 @@ entity fastnms_core is
     cfg_threshold  : in    unsigned(7 downto 0);
     cfg_cell_log   : in    unsigned(2 downto 0);
     cfg_per_cell   : in    unsigned(3 downto 0);
+    cfg_min_area   : in    unsigned(AREA_BITS - 1 downto 0);
     in_valid       : in    std_logic;
     in_ready       : out   std_logic;
     in_data        : in    std_logic_vector(PPC * 8 - 1 downto 0);
@@ -85,6 +93,7 @@ entity fastnms_core is
     out_x          : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
     out_y          : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     out_score      : out   unsigned(score_width(SCORE) - 1 downto 0);
+    out_area       : out   unsigned(AREA_BITS - 1 downto 0);
     out_eof        : out   std_logic;
     out_angle      : out   std_logic_vector(31 downto 0);
     out_descriptor : out   std_logic_vector(255 downto 0);
@@ -115,6 +124,7 @@ architecture rtl of fastnms_core is
   end function connectivity_of;
 
   constant REGION_CONNECTIVITY : positive := connectivity_of(NMS);
+  constant REGION              : boolean  := NMS = "region4" or NMS = "region8";
   constant ORB                 : boolean  := DESCRIPTOR = "orb";
   -- ORB's border: keypoints 31 pixels or more inside the frame.
   constant EDGE : positive := 31;
@@ -148,15 +158,21 @@ architecture rtl of fastnms_core is
   signal d_height  : unsigned(cfg_height'range);
   signal d_pixel   : std_logic_vector(PPC * 8 - 1 downto 0); -- (ORB: PPC 1)
   signal d_blurred : std_logic_vector(PPC * 8 - 1 downto 0);
-  -- The budget's configuration, through the detector with the frame.
-  signal cfg_tag : std_logic_vector(6 downto 0);
-  signal d_tag   : std_logic_vector(6 downto 0);
+  -- The frame's configuration after the detector, through it with the
+  -- frame: the region filter's MIN_AREA, the budget's CELL and K.
+  signal cfg_tag : std_logic_vector(AREA_BITS + 6 downto 0);
+  signal d_tag   : std_logic_vector(AREA_BITS + 6 downto 0);
+  -- That configuration at the NMS's output, from the frame's first record
+  -- to its end-of-frame beat (a queue, with the budget or the region NMS).
+  signal q_valid : std_logic;
+  signal q_tag   : std_logic_vector(d_tag'range);
   -- The NMS's output, before the budget.
   signal s_valid : std_logic;
   signal s_ready : std_logic;
   signal s_x     : unsigned(out_x'range);
   signal s_y     : unsigned(out_y'range);
   signal s_score : unsigned(out_score'range);
+  signal s_area  : unsigned(out_area'range);
   signal s_eof   : std_logic;
   -- A row-end beat (with the budget only): every record of the lines up to s_y has come.
   signal s_row_end : std_logic;
@@ -167,18 +183,20 @@ architecture rtl of fastnms_core is
   -- With ORB: its image stream (the third side of the fork), the detector's
   -- next frame held while one is in ORB, the NMS's records inside ORB's
   -- border, and the budget's output.
-  signal i_valid  : std_logic;
-  signal i_ready  : std_logic;
-  signal d_hold   : std_logic;
-  signal d_go     : std_logic;
-  signal keep     : std_logic;
-  signal k_valid  : std_logic;
-  signal k_ready  : std_logic;
-  signal k_x      : unsigned(out_x'range);
-  signal k_y      : unsigned(out_y'range);
-  signal k_score  : unsigned(out_score'range);
-  signal k_eof    : std_logic;
-  signal cell_log : unsigned(2 downto 0);
+  signal i_valid   : std_logic;
+  signal i_ready   : std_logic;
+  signal d_hold    : std_logic;
+  signal d_go      : std_logic;
+  signal keep      : std_logic;
+  signal k_valid   : std_logic;
+  signal k_ready   : std_logic;
+  signal k_x       : unsigned(out_x'range);
+  signal k_y       : unsigned(out_y'range);
+  signal k_score   : unsigned(out_score'range);
+  signal k_area    : unsigned(out_area'range);
+  signal k_eof     : std_logic;
+  signal cell_log  : unsigned(2 downto 0);
+  signal below_min : std_logic; -- a region smaller than the frame's MIN_AREA
 
 begin
 
@@ -222,7 +240,8 @@ begin
   -- With ORB, CELL no larger than ORB_MAX_CELL.
   cell_log <= to_unsigned(ORB_CELL_LOG, 3) when ORB and cfg_cell_log > ORB_CELL_LOG else
               cfg_cell_log;
-  cfg_tag  <= std_logic_vector(cell_log) & std_logic_vector(cfg_per_cell);
+  cfg_tag  <= std_logic_vector(cfg_min_area) & std_logic_vector(cell_log) &
+              std_logic_vector(cfg_per_cell);
 
   detector : entity work.fastnms_fast_detector
     generic map (
@@ -310,6 +329,8 @@ begin
         err_frame   => open
       );
 
+    s_area <= (others => '0');
+
   end generate suppress_3x3;
 
   suppress_region : if NMS = "region4" or NMS = "region8" generate
@@ -337,6 +358,7 @@ begin
         out_x     => s_x,
         out_y     => s_y,
         out_score => s_score,
+        out_area  => s_area,
         out_eof   => s_eof
       );
 
@@ -372,36 +394,28 @@ begin
         out_row_end => s_row_end
       );
 
+    s_area <= (others => '0');
+
   end generate suppress_none;
 
-  -- ---- the budget ---------------------------------------------------------------
+  -- ---- the frame's configuration at the NMS's output ---------------------------
 
-  no_budget : if MAX_PER_CELL = 0 generate
-    k_valid <= s_valid;
-    s_ready <= k_ready;
-    k_x     <= s_x;
-    k_y     <= s_y;
-    k_score <= s_score;
-    k_eof   <= s_eof;
-  end generate no_budget;
+  no_config_queue : if MAX_PER_CELL = 0 and not REGION generate
+    q_valid <= '1';
+    q_tag   <= (others => '0');
+  end generate no_config_queue;
 
-  with_budget : if MAX_PER_CELL > 0 generate
-
-    -- The budget's configuration of each frame: taken by the detector with
-    -- the frame's first pixel (d_tag), queued at the frame's first score
-    -- beat, consumed at the frame's end-of-frame record. Every frame the
-    -- detector emits gives one end-of-frame record, so queue and frames stay
-    -- in step. Frames between the detector's output and the budget's input:
-    -- two, a few more when frames without records pile up behind a stalled
-    -- output; the queue has room for 6 at least (a simulation assertion
-    -- checks that it never refuses one).
-    signal q_valid : std_logic;
-    signal q_ready : std_logic;
+  with_config_queue : if MAX_PER_CELL > 0 or REGION generate
+    -- Each frame's configuration: taken by the detector with the frame's
+    -- first pixel (d_tag), queued at the frame's first score beat, consumed
+    -- at the frame's end-of-frame record. Every frame the detector emits
+    -- gives one end-of-frame record, so queue and frames stay in step.
+    -- Frames between the detector's output and the NMS's output: two, a few
+    -- more when frames without records pile up behind a stalled output; the
+    -- queue has room for 6 at least (a simulation assertion checks that it
+    -- never refuses one).
     signal q_push  : std_logic;
-    signal q_tag   : std_logic_vector(d_tag'range);
-    signal b_valid : std_logic;
-    signal b_ready : std_logic;
-
+    signal q_ready : std_logic;
   begin
 
     q_push <= d_valid and d_ready and d_sof;
@@ -427,11 +441,50 @@ begin
         busy      => open
       );
 
-    -- A frame's records wait for its configuration (never long: the NMS
-    -- takes several clocks from a frame's first score beat to its first
-    -- record).
+    -- pragma translate_off
+    queue_check : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        assert not (rst = '0' and q_push = '1' and q_ready = '0')
+          report "fastnms_core: the configuration queue is full"
+          severity failure;
+      end if;
+
+    end process queue_check;
+
+  -- pragma translate_on
+
+  end generate with_config_queue;
+
+  -- ---- the region filter and the budget -----------------------------------------
+
+  -- A frame's records wait for its configuration (never long: the NMS takes
+  -- several clocks from a frame's first score beat to its first record).
+  -- The region filter takes a record smaller than MIN_AREA and passes it on
+  -- to nothing.
+  below_min <= '1' when REGION and s_eof = '0' and
+                        s_area < unsigned(q_tag(q_tag'high downto q_tag'high - AREA_BITS + 1)) else
+               '0';
+
+  no_budget : if MAX_PER_CELL = 0 generate
+    k_valid <= s_valid and q_valid and not below_min;
+    s_ready <= q_valid and (k_ready or below_min);
+    k_x     <= s_x;
+    k_y     <= s_y;
+    k_score <= s_score;
+    k_area  <= s_area;
+    k_eof   <= s_eof;
+  end generate no_budget;
+
+  with_budget : if MAX_PER_CELL > 0 generate
+    signal b_valid : std_logic;
+    signal b_ready : std_logic;
+  begin
+
     b_valid <= s_valid and q_valid and keep;
     s_ready <= q_valid and (b_ready or not keep);
+    k_area  <= (others => '0'); -- (no region NMS with the budget)
 
     budget : entity work.fastnms_cell_budget
       generic map (
@@ -460,20 +513,6 @@ begin
         out_eof     => k_eof
       );
 
-    -- pragma translate_off
-    queue_check : process (clk) is
-    begin
-
-      if rising_edge(clk) then
-        assert not (rst = '0' and q_push = '1' and q_ready = '0')
-          report "fastnms_core: the budget's configuration queue is full"
-          severity failure;
-      end if;
-
-    end process queue_check;
-
-  -- pragma translate_on
-
   end generate with_budget;
 
   -- ---- ORB ----------------------------------------------------------------------
@@ -487,6 +526,7 @@ begin
     out_x          <= k_x;
     out_y          <= k_y;
     out_score      <= k_score;
+    out_area       <= k_area;
     out_eof        <= k_eof;
     out_angle      <= (others => '0');
     out_descriptor <= (others => '0');
@@ -592,6 +632,7 @@ begin
 
     out_valid <= o_valid;
     out_eof   <= o_eof;
+    out_area  <= (others => '0');
 
   end generate with_orb;
 

@@ -1,6 +1,8 @@
 -- Region NMS (the paper's streaming NMS): one record per 4- or 8-connected
 -- region of corner pixels, its maximum score, a tie going to the region's
--- first pixel in raster order. One pixel per clock whatever the content.
+-- first pixel in raster order, and its area (out_area: its corner pixels,
+-- saturating at 2 ** AREA_BITS - 1; 0 on the end-of-frame beat). One pixel
+-- per clock whatever the content.
 --
 -- The algorithm is golden/region_stream.py, step for step; the design, its
 -- invariants and the clock schedule are in docs/fastnms_nms_region.md. In
@@ -9,7 +11,7 @@
 -- says whether it is the first run of its class in its row (head table, one
 -- bank per row parity) and one whether it is the last (last table): a first
 -- run pushes its class, a later run continues the top, a last run pops it. A
--- data table holds each class's best key at its first run's slot, and every
+-- data table holds each class's best key and area at its first run's slot, and every
 -- column changes only the stack's top two entries, the current run's class
 -- and one word of each table.
 --
@@ -74,6 +76,7 @@ entity fastnms_nms_region is
     out_x     : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
     out_y     : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     out_score : out   unsigned(SCORE_BITS - 1 downto 0);
+    out_area  : out   unsigned(AREA_BITS - 1 downto 0);
     out_eof   : out   std_logic
   );
 end entity fastnms_nms_region;
@@ -83,10 +86,10 @@ architecture rtl of fastnms_nms_region is
   constant XB       : positive := clog2(MAX_WIDTH);
   constant YB       : positive := bits_for(MAX_HEIGHT);
   constant WB       : positive := bits_for(MAX_WIDTH);
-  constant KB       : positive := key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
+  constant DB       : positive := data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
   constant SB       : positive := slot_bits(MAX_WIDTH);
   constant RB       : positive := clog2(stack_ram_words(MAX_WIDTH));
-  constant OUT_BITS : positive := 1 + XB + YB + SCORE_BITS;
+  constant OUT_BITS : positive := 1 + XB + YB + SCORE_BITS + AREA_BITS;
 
   -- Input, through a skid buffer (registered in_ready).
   signal px_valid  : std_logic;
@@ -122,7 +125,7 @@ architecture rtl of fastnms_nms_region is
   -- The tables' words at the reader's column.
   signal run_head  : std_logic;
   signal run_last  : std_logic;
-  signal data_word : unsigned(KB - 1 downto 0);
+  signal data_word : unsigned(DB - 1 downto 0);
 
   -- The column's operation.
   signal op        : std_logic_vector(OP_BITS - 1 downto 0);
@@ -136,7 +139,7 @@ architecture rtl of fastnms_nms_region is
   -- The table writes, registered by the key data path.
   signal data_w_en       : std_logic;
   signal data_w_slot     : unsigned(SB - 1 downto 0);
-  signal data_w_key      : unsigned(KB - 1 downto 0);
+  signal data_w_key      : unsigned(DB - 1 downto 0);
   signal data_w_s0       : std_logic;
   signal head_w_en       : std_logic;
   signal head_w_addr     : unsigned(SB downto 0);
@@ -158,6 +161,7 @@ architecture rtl of fastnms_nms_region is
   signal rec_x     : unsigned(XB - 1 downto 0);
   signal rec_y     : unsigned(YB - 1 downto 0);
   signal rec_score : unsigned(SCORE_BITS - 1 downto 0);
+  signal rec_area  : unsigned(AREA_BITS - 1 downto 0);
   signal rec_room  : std_logic;
   signal q_data    : std_logic_vector(OUT_BITS - 1 downto 0);
 
@@ -354,7 +358,8 @@ begin
       rec_eof         => rec_eof,
       rec_x           => rec_x,
       rec_y           => rec_y,
-      rec_score       => rec_score
+      rec_score       => rec_score,
+      rec_area        => rec_area
     );
 
   records : entity work.fastnms_fifo
@@ -372,7 +377,7 @@ begin
       in_room3  => rec_room,
       in_spare  => open,
       in_data   => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
-                   std_logic_vector(rec_score),
+                   std_logic_vector(rec_score) & std_logic_vector(rec_area),
       out_valid => out_valid,
       out_ready => out_ready,
       out_data  => q_data,
@@ -380,8 +385,9 @@ begin
     );
 
   out_eof   <= q_data(OUT_BITS - 1);
-  out_x     <= unsigned(q_data(OUT_BITS - 2 downto YB + SCORE_BITS));
-  out_y     <= unsigned(q_data(YB + SCORE_BITS - 1 downto SCORE_BITS));
-  out_score <= unsigned(q_data(SCORE_BITS - 1 downto 0));
+  out_x     <= unsigned(q_data(OUT_BITS - 2 downto YB + SCORE_BITS + AREA_BITS));
+  out_y     <= unsigned(q_data(YB + SCORE_BITS + AREA_BITS - 1 downto SCORE_BITS + AREA_BITS));
+  out_score <= unsigned(q_data(SCORE_BITS + AREA_BITS - 1 downto AREA_BITS));
+  out_area  <= unsigned(q_data(AREA_BITS - 1 downto 0));
 
 end architecture rtl;

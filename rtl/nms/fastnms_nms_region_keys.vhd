@@ -7,7 +7,12 @@
 -- the current class's; it merges keys, makes the table writes (registered:
 -- a port's first write now, a second one, only at a row's last column, from
 -- a spare register on the next clock) and the records (a closed region's
--- best pixel, or the end-of-frame beat). It selects only on the operation's
+-- best pixel, or the end-of-frame beat). Beside each key it carries its
+-- class's area (corner pixels), which merges by addition where the keys
+-- merge by maximum; the record carries it saturated at 2 ** AREA_BITS - 1.
+-- Inside, an area is its count modulo 2 ** AREA_BITS and a flag set once
+-- the count has reached 2 ** AREA_BITS: the adder's carry out goes to the
+-- flag, and no saturating multiplexer follows the adder. It selects only on the operation's
 -- registered bits and on its own comparisons; nothing goes back to the
 -- control but the registered writes, which the tables and the control see
 -- landing.
@@ -38,15 +43,15 @@ entity fastnms_nms_region_keys is
     -- The reader is at its row's column 0 now (fastnms_nms_region_schedule):
     -- a write to slot 0 landing on the next clock is the key a push there takes.
     r_col0 : in    std_logic;
-    -- The data word of the reader's column (fastnms_nms_region_tables).
-    data_word : in    unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
+    -- The data word (key & area) of the reader's column (fastnms_nms_region_tables).
+    data_word : in    unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
     -- The table writes, registered (fastnms_nms_region_tables): the data
     -- table's (and whether it is to slot 0), the head table's (slot & bank;
     -- and the one waiting in the spare register), the last table's (slot &
     -- '0'), each with whether it is to slot 0 or 1.
     data_w_en       : out   std_logic;
     data_w_slot     : out   unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    data_w_key      : out   unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
+    data_w_key      : out   unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
     data_w_s0       : out   std_logic;
     head_w_en       : out   std_logic;
     head_w_addr     : out   unsigned(slot_bits(MAX_WIDTH) downto 0);
@@ -68,7 +73,8 @@ entity fastnms_nms_region_keys is
     rec_eof   : out   std_logic;
     rec_x     : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
     rec_y     : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    rec_score : out   unsigned(SCORE_BITS - 1 downto 0)
+    rec_score : out   unsigned(SCORE_BITS - 1 downto 0);
+    rec_area  : out   unsigned(AREA_BITS - 1 downto 0)
   );
 end entity fastnms_nms_region_keys;
 
@@ -79,11 +85,42 @@ architecture rtl of fastnms_nms_region_keys is
   constant KB          : positive := key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
   constant SB          : positive := slot_bits(MAX_WIDTH);
   constant STACK_WORDS : positive := stack_ram_words(MAX_WIDTH);
-  constant ENTRY_BITS  : positive := 2 * SB + KB;
+  constant AB          : positive := AREA_BITS + 1; -- the count and its flag
+  constant ENTRY_BITS  : positive := 2 * SB + KB + AB;
 
   subtype slot_t is unsigned(SB - 1 downto 0);
 
   subtype key_t is unsigned(KB - 1 downto 0);
+
+  subtype area_t is unsigned(AB - 1 downto 0);
+
+  constant AREA_ONE : area_t := to_unsigned(1, AB);
+
+  -- a + b + c (c 0 or 1): the counts' sum with c as the adder's carry in
+  -- (the low bit of 2a + 1 + 2b + c), the flag set by the carry out or by
+  -- either operand's.
+  function area_sum (a : area_t; b : area_t; c : std_logic) return area_t is
+    variable sum   : unsigned(AB - 1 downto 0);
+    variable carry : unsigned(0 downto 0);
+  begin
+
+    carry(0) := c;
+    sum      := ('0' & a(AB - 2 downto 0)) + ('0' & b(AB - 2 downto 0)) + carry;
+    return (sum(AB - 1) or a(AB - 1) or b(AB - 1)) & sum(AB - 2 downto 0);
+
+  end function area_sum;
+
+  -- The record's area: the count, or all ones once the flag is set.
+  function saturated (a : area_t) return unsigned is
+  begin
+
+    if a(AB - 1) = '1' then
+      return (AB - 2 downto 0 => '1');
+    end if;
+
+    return a(AB - 2 downto 0);
+
+  end function saturated;
 
   -- A previous-row class on the stack: the data path's half (the control
   -- keeps its flags).
@@ -91,12 +128,14 @@ architecture rtl of fastnms_nms_region_keys is
     head : slot_t; -- slot of its first run in the current row
     tail : slot_t; -- slot of its latest run in the current row
     key  : key_t;  -- best pixel (valid unless merged into the entry above)
+    area : area_t; -- corner pixels (valid with the key)
   end record entry_t;
 
   function pack (e : entry_t) return std_logic_vector is
   begin
 
-    return std_logic_vector(e.head) & std_logic_vector(e.tail) & std_logic_vector(e.key);
+    return std_logic_vector(e.head) & std_logic_vector(e.tail) & std_logic_vector(e.key) &
+           std_logic_vector(e.area);
 
   end function pack;
 
@@ -105,8 +144,9 @@ architecture rtl of fastnms_nms_region_keys is
   begin
 
     e.head := unsigned(v(ENTRY_BITS - 1 downto ENTRY_BITS - SB));
-    e.tail := unsigned(v(ENTRY_BITS - SB - 1 downto KB));
-    e.key  := unsigned(v(KB - 1 downto 0));
+    e.tail := unsigned(v(ENTRY_BITS - SB - 1 downto KB + AB));
+    e.key  := unsigned(v(KB + AB - 1 downto AB));
+    e.area := unsigned(v(AB - 1 downto 0));
     return e;
 
   end function unpack;
@@ -165,6 +205,7 @@ architecture rtl of fastnms_nms_region_keys is
     en   : std_logic;
     addr : slot_t;
     data : key_t;
+    area : area_t;
   end record data_write_t;
 
   -- A bit table's write: the slot, then the bank (the row's parity; '0' in
@@ -186,6 +227,7 @@ architecture rtl of fastnms_nms_region_keys is
   -- read c_key, the stack and the tables before their first write.)
   signal op_r       : op_t;
   signal c_key      : key_t   := unsigned(sim_zeros(KB));
+  signal c_area     : area_t  := unsigned(sim_zeros(AB));
   signal c_head     : slot_t  := unsigned(sim_zeros(SB));
   signal c_tail     : slot_t  := unsigned(sim_zeros(SB));
   signal d_top      : entry_t := unpack(sim_zeros(ENTRY_BITS));
@@ -239,7 +281,7 @@ begin
 
   data_w_en       <= data_w.en;
   data_w_slot     <= data_w.addr;
-  data_w_key      <= data_w.data;
+  data_w_key      <= data_w.data & data_w.area;
   data_w_s0       <= data_w0;
   head_w_en       <= head_w.en;
   head_w_addr     <= head_w.addr;
@@ -296,6 +338,12 @@ begin
     variable best          : key_t;
     variable cur_ge_pix    : boolean;
     variable cur           : key_t;
+    -- The areas beside those keys: the base's, the class merging in's,
+    -- their sum with the pixel joining; the current class's.
+    variable base_area  : area_t;
+    variable merge_area : area_t;
+    variable best_area  : area_t;
+    variable cur_area   : area_t;
     -- The table writes' candidate slots and their flags (Table writes, below).
     variable cands      : slot_array;
     variable slot0      : slot_sel_t;
@@ -321,7 +369,7 @@ begin
       v_third  := d_third;
       v_head   := c_head;
       v_tail   := c_tail;
-      dw1      := (en => '0', addr => c_head, data => c_key);
+      dw1      := (en => '0', addr => c_head, data => c_key, area => c_area);
       dw2      := dw1;
       hw1      := NO_BIT_WRITE;
       hw2      := NO_BIT_WRITE;
@@ -357,11 +405,14 @@ begin
       -- every pixel of a class in raster order, so it wins only with a
       -- higher score.
       if op_r.k_base_pushed = '0' then
-        base := d_top.key;
+        base      := d_top.key;
+        base_area := d_top.area;
       elsif data_landing = '1' then
-        base := data_w.data;
+        base      := data_w.data;
+        base_area := data_w.area;
       else
-        base := data_word;
+        base      := data_word(KB + AB - 1 downto AB);
+        base_area := data_word(AB - 1 downto 0);
       end if;
       -- (At most one of them; an AND-OR, one LUT per bit.)
       merge  := (c_key and (c_key'range => op_r.k_merge_cur)) or
@@ -387,6 +438,12 @@ begin
       else
         best := pix;
       end if;
+      -- The merged class's area: every pixel of the three operands (the
+      -- pixel starting a run is a class of one pixel).
+      merge_area := (c_area and (c_area'range => op_r.k_merge_cur)) or
+                    (AREA_ONE and (AREA_ONE'range => op_r.k_merge_pix)) or
+                    (d_top.area and (d_top.area'range => op_r.k_merge_top));
+      best_area  := area_sum(base_area, merge_area, op_r.k_pix);
       -- The current class's key after steps 2 and 4: the pixel starting it,
       -- or a pixel with a higher score.
       cur_ge_pix := score_of(c_key) >= op_score;
@@ -394,6 +451,11 @@ begin
         cur := pix;
       else
         cur := c_key;
+      end if;
+      if op_r.k_cur_start = '1' then
+        cur_area := AREA_ONE;
+      else
+        cur_area := area_sum(c_area, (others => '0'), op_r.k_cur_pix);
       end if;
 
       -- synthesis translate_off
@@ -403,7 +465,7 @@ begin
       assert not (d_third_rd = '1' and popping and not pushed)
         report "fastnms_nms_region: a pop uncovering the stack RAM's word before it is read"
         severity failure;
-      assert not (popping and op_r.pop_emit = '1' and best /= base)
+      assert not (popping and op_r.pop_emit = '1' and (best /= base or best_area /= base_area))
         report "fastnms_nms_region: a closing class merged in its last column"
         severity failure;
       assert data_landing = (data_w0 and op_r.r_col0)
@@ -426,7 +488,7 @@ begin
           v_third  := v_second;
         end if;
         v_second := v_top;
-        v_top    := (head => (others => '0'), tail => (others => '0'), key => base);
+        v_top    := (head => (others => '0'), tail => (others => '0'), key => base, area => base_area);
       end if;
 
       -- 2. A current-row run starts: a class of its own for now.
@@ -530,8 +592,8 @@ begin
       else
         dw1_sel := v_head_sel;
       end if;
-      dw1 := (en => to_sl(final or cur_final), addr => pick(dw1_sel, cands), data => c_key);
-      dw2 := (en => to_sl(final and cur_final), addr => pick(v_head_sel, cands), data => c_key);
+      dw1 := (en => to_sl(final or cur_final), addr => pick(dw1_sel, cands), data => c_key, area => c_area);
+      dw2 := (en => to_sl(final and cur_final), addr => pick(v_head_sel, cands), data => c_key, area => c_area);
       hw1 := (en => to_sl(w1_en), addr => pick(hw1_sel, cands) & op_r.bank, data => to_sl(not contact_w));
       hw2 := (en => to_sl(w2_en), addr => pick(hw2_sel, cands) & op_r.bank, data => '1');
       lw1 := (en => to_sl(w1_en), addr => pick(lw1_sel, cands) & '0', data => to_sl(not contact_w));
@@ -541,26 +603,34 @@ begin
       -- class on top; the popped class (the merged one) goes on as the
       -- current class, is finalized or closes.
       if op_r.k_keep_top = '1' then
-        v_top.key := d_top.key;
+        v_top.key  := d_top.key;
+        v_top.area := d_top.area;
       elsif op_r.k_take_second = '1' then
-        v_top.key := d_second.key;
+        v_top.key  := d_second.key;
+        v_top.area := d_second.area;
       else
-        v_top.key := best;
+        v_top.key  := best;
+        v_top.area := best_area;
       end if;
       if op_r.k_final = '1' then
         dw1.data := best;
+        dw1.area := best_area;
       else
         dw1.data := cur;
+        dw1.area := cur_area;
       end if;
       dw2.data := cur;
+      dw2.area := cur_area;
 
       d_top    <= v_top;
       d_second <= v_second;
       d_third  <= v_third;
       if op_r.k_detach = '1' then
-        c_key <= best;
+        c_key  <= best;
+        c_area <= best_area;
       else
-        c_key <= cur;
+        c_key  <= cur;
+        c_area <= cur_area;
       end if;
       c_head <= v_head;
       c_tail <= v_tail;
@@ -571,7 +641,7 @@ begin
       -- which c_key holds on that clock (the spare register keeps only its
       -- slot; asserted).
       if data_spare.en = '1' then
-        data_w        <= (en => '1', addr => data_spare.addr, data => c_key);
+        data_w        <= (en => '1', addr => data_spare.addr, data => c_key, area => c_area);
         data_w0       <= spare_w0;
         data_landing  <= spare_w0 and r_col0;
         data_spare.en <= '0';
@@ -607,7 +677,7 @@ begin
       end if;
 
       -- synthesis translate_off
-      assert not (data_spare.en = '1' and c_key /= data_spare.data)
+      assert not (data_spare.en = '1' and (c_key /= data_spare.data or c_area /= data_spare.area))
         report "fastnms_nms_region: the second data write's key out of step"
         severity failure;
       assert not ((data_spare.en = '1' and dw1.en = '1') or (head_spare.en = '1' and hw1.en = '1') or
@@ -633,6 +703,7 @@ begin
         rec_x     <= not base(XB - 1 downto 0);
         rec_y     <= not base(XB + YB - 1 downto XB);
         rec_score <= base(KB - 1 downto XB + YB);
+        rec_area  <= saturated(base_area);
       elsif eof_pending = '1' and rec_room = '1' then
         -- Separate narrow registers: GHDL's Verilog output writes a constant
         -- vector of more than 32 bits as a string (ASCII digits).
@@ -641,6 +712,7 @@ begin
         rec_x       <= (others => '1');
         rec_y       <= (others => '1');
         rec_score   <= (others => '0');
+        rec_area    <= (others => '0');
         eof_pending <= op_r.flush_ends;
       end if;
 

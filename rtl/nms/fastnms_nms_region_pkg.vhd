@@ -24,6 +24,15 @@ package fastnms_nms_region_pkg is
   function key_bits (max_width : positive; max_height : positive; score_bits : positive)
     return positive;
 
+  -- A class's area: its corner pixels, saturating (the record's AREA field).
+  constant AREA_BITS : positive := 11;
+
+  -- A data word (the data table's): the key, then the area as the key data
+  -- path keeps it (fastnms_nms_region_keys: the count modulo 2 ** AREA_BITS
+  -- and a flag) in the low AREA_BITS + 1 bits.
+  function data_bits (max_width : positive; max_height : positive; score_bits : positive)
+    return positive;
+
   -- Slots: one per two columns (two runs of a row start at least two apart).
   function slot_count (max_width : positive) return positive;
 
@@ -112,6 +121,14 @@ package body fastnms_nms_region_pkg is
     return score_bits + bits_for(max_height) + clog2(max_width);
 
   end function key_bits;
+
+  function data_bits (max_width : positive; max_height : positive; score_bits : positive)
+    return positive is
+  begin
+
+    return key_bits(max_width, max_height, score_bits) + AREA_BITS + 1;
+
+  end function data_bits;
 
   function slot_count (max_width : positive) return positive is
   begin

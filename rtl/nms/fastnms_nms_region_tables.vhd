@@ -3,7 +3,7 @@
 -- (slot = start column / 2), the head table says whether the run is the
 -- first of its class in its row (one bank per row parity), the last table
 -- whether it is the last, the data table gives a class's best key at its
--- first run's slot.
+-- first run's slot (with its area: the data word).
 --
 -- The reads hide the memories' latency: the head and last words of the
 -- slot two columns ahead of the reader are read on every reader step
@@ -58,7 +58,7 @@ entity fastnms_nms_region_tables is
     -- or 1.
     data_w_en       : in    std_logic;
     data_w_slot     : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    data_w_key      : in    unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
+    data_w_key      : in    unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
     data_w_s0       : in    std_logic;
     head_w_en       : in    std_logic;
     head_w_addr     : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
@@ -78,13 +78,13 @@ entity fastnms_nms_region_tables is
     run_head : out   std_logic;
     run_last : out   std_logic;
     -- The data word of the reader's column, for the operation's clock.
-    data_word : out   unsigned(key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)
+    data_word : out   unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)
   );
 end entity fastnms_nms_region_tables;
 
 architecture rtl of fastnms_nms_region_tables is
 
-  constant KB    : positive := key_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
+  constant DB    : positive := data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
   constant SLOTS : positive := slot_count(MAX_WIDTH);
   constant SB    : positive := slot_bits(MAX_WIDTH);
 
@@ -96,8 +96,8 @@ architecture rtl of fastnms_nms_region_tables is
   -- (its address, and a write to it since, which the RAM may not show), and
   -- the word of the reader's column, a register. Writes after a read update
   -- it: the previous row's last writes land while the next row's first
-  -- columns are read. Words are key wide; the bit tables use bit 0.
-  subtype word_t is std_logic_vector(KB - 1 downto 0);
+  -- columns are read. Words are data words (key and area); the bit tables use bit 0.
+  subtype word_t is std_logic_vector(DB - 1 downto 0);
 
   type ahead_t is record
     addr1 : bit_addr_t;
@@ -161,12 +161,12 @@ architecture rtl of fastnms_nms_region_tables is
   function word (b : std_logic) return word_t is
   begin
 
-    return (KB - 1 downto 1 => '0') & b;
+    return (DB - 1 downto 1 => '0') & b;
 
   end function word;
 
   signal op_r       : op_t;
-  signal data_rd    : std_logic_vector(KB - 1 downto 0);
+  signal data_rd    : std_logic_vector(DB - 1 downto 0);
   signal head_rd    : std_logic_vector(0 downto 0);
   signal last_rd    : std_logic_vector(0 downto 0);
   signal data_ahead : ahead_t;
@@ -284,7 +284,7 @@ begin
   data_table : entity work.fastnms_ram_sdp
     generic map (
       DEPTH => SLOTS,
-      WIDTH => KB
+      WIDTH => DB
     )
     port map (
       clk     => clk,

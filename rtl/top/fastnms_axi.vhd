@@ -233,6 +233,7 @@ architecture rtl of fastnms_axi is
   signal cfg_threshold : unsigned(7 downto 0);
   signal cfg_cell_log  : unsigned(2 downto 0);
   signal cfg_per_cell  : unsigned(3 downto 0);
+  signal cfg_min_area  : unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
 
   -- Video in: the input skid buffer, then the gate.
   signal v_in       : std_logic_vector(PPC * 8 + 1 downto 0);
@@ -260,6 +261,7 @@ architecture rtl of fastnms_axi is
   signal k_x      : unsigned(X_BITS - 1 downto 0);
   signal k_y      : unsigned(Y_BITS - 1 downto 0);
   signal k_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal k_area   : unsigned(REC_AREA_WIDTH - 1 downto 0);
   signal k_eof    : std_logic;
   signal k_angle  : std_logic_vector(31 downto 0);
   signal k_desc   : std_logic_vector(255 downto 0);
@@ -438,6 +440,7 @@ begin
       cfg_threshold   => cfg_threshold,
       cfg_cell_log    => cfg_cell_log,
       cfg_per_cell    => cfg_per_cell,
+      cfg_min_area    => cfg_min_area,
       busy            => busy,
       evt_eol_early   => err_eol_early,
       evt_eol_late    => err_eol_late,
@@ -575,6 +578,7 @@ begin
       cfg_threshold  => cfg_threshold,
       cfg_cell_log   => cfg_cell_log,
       cfg_per_cell   => cfg_per_cell,
+      cfg_min_area   => cfg_min_area,
       in_valid       => c_valid,
       in_ready       => c_ready,
       in_data        => c_data,
@@ -585,6 +589,7 @@ begin
       out_x          => k_x,
       out_y          => k_y,
       out_score      => k_score,
+      out_area       => k_area,
       out_eof        => k_eof,
       out_angle      => k_angle,
       out_descriptor => k_desc,
@@ -606,7 +611,8 @@ begin
       Y_BITS     => Y_BITS,
       SCORE_BITS => SCORE_BITS,
       FIFO_DEPTH => CORNER_FIFO_DEPTH,
-      DESCRIPTOR => DESCRIPTOR
+      DESCRIPTOR => DESCRIPTOR,
+      AREA       => NMS = "region4" or NMS = "region8"
     )
     port map (
       clk           => aclk,
@@ -619,6 +625,7 @@ begin
       in_x          => k_x,
       in_y          => k_y,
       in_score      => k_score,
+      in_area       => k_area,
       in_eof        => k_eof,
       in_angle      => k_angle,
       in_descriptor => k_desc,

@@ -9,7 +9,7 @@
 -- read-only registers change nothing. Reads: rd_done and rd_data one clock
 -- after rd_en.
 --
--- Configuration: THRESHOLD, WIDTH, HEIGHT and BUDGET are written into shadow
+-- Configuration: THRESHOLD, WIDTH, HEIGHT, BUDGET and MIN_AREA are written into shadow
 -- registers; the core's values (cfg_*) take them on the clock cfg_apply is
 -- high (a start-of-frame pixel accepted at s_axis_video), so a frame takes
 -- the values written before its first pixel is accepted, and the input never
@@ -75,6 +75,7 @@ entity fastnms_axi_regs is
     cfg_threshold : out   unsigned(7 downto 0);
     cfg_cell_log  : out   unsigned(2 downto 0);
     cfg_per_cell  : out   unsigned(3 downto 0);
+    cfg_min_area  : out   unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
     -- status
     busy            : in    std_logic;
     evt_eol_early   : in    std_logic;
@@ -245,6 +246,8 @@ architecture rtl of fastnms_axi_regs is
   signal k_shadow      : unsigned(3 downto 0);
   signal cell_active   : unsigned(2 downto 0);
   signal k_active      : unsigned(3 downto 0);
+  signal area_shadow   : unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
+  signal area_active   : unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
   signal sticky        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal events        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
   signal clear_mask    : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
@@ -426,6 +429,13 @@ begin
           cell_shadow <= bu_cell_log;
           k_shadow    <= bu_per_cell;
         end if;
+        if w_sel(REG_MIN_AREA) = '1' then
+          for i in area_shadow'range loop
+            if w_byte((MIN_AREA_VALUE_LSB + i) / 8) = '1' then
+              area_shadow(i) <= w_data(MIN_AREA_VALUE_LSB + i);
+            end if;
+          end loop;
+        end if;
       end if;
 
       -- A write on the clock of an apply is for the next frame.
@@ -435,6 +445,7 @@ begin
         height_active <= height_shadow;
         cell_active   <= cell_shadow;
         k_active      <= k_shadow;
+        area_active   <= area_shadow;
       end if;
 
       sticky    <= (sticky and not clear_mask) or events;
@@ -456,6 +467,8 @@ begin
         cell_active   <= to_unsigned(0, 3);
         k_shadow      <= unsigned(BUDGET_PER_CELL_RESET);
         k_active      <= unsigned(BUDGET_PER_CELL_RESET);
+        area_shadow   <= unsigned(MIN_AREA_VALUE_RESET);
+        area_active   <= unsigned(MIN_AREA_VALUE_RESET);
         sticky        <= (others => '0');
         interrupt     <= '0';
       end if;
@@ -471,6 +484,7 @@ begin
   cfg_height    <= height_active;
   cfg_cell_log  <= cell_active;
   cfg_per_cell  <= k_active;
+  cfg_min_area  <= area_active;
 
   -- ---- frame statistics ------------------------------------------------------
 
@@ -561,7 +575,8 @@ begin
     place(std_logic_vector(shift_left(to_unsigned(16,
                                                    BUDGET_CELL_WIDTH),
                                        to_integer(cell_shadow))),
-           BUDGET_CELL_LSB)
+           BUDGET_CELL_LSB),
+    REG_MIN_AREA     => place(std_logic_vector(area_shadow), MIN_AREA_VALUE_LSB)
   );
 
 end architecture rtl;

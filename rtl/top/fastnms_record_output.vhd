@@ -8,7 +8,8 @@
 -- the beat serializer sends one beat, or REC_ORB_BEATS with ORB. With
 -- live = '0' every record waits for room; with live = '1' the core is never
 -- held and records that do not fit are dropped, counted (dropped) and
--- flagged (OVERFLOW on their frame's last record).
+-- flagged (OVERFLOW on their frame's last record). With AREA (the region
+-- NMS) each record carries in_area in its AREA field.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -23,7 +24,8 @@ entity fastnms_record_output is
     Y_BITS     : positive := 11;
     SCORE_BITS : positive := 8;
     FIFO_DEPTH : positive := 512;
-    DESCRIPTOR : string   := "none"
+    DESCRIPTOR : string   := "none";
+    AREA       : boolean  := false
   );
   port (
     clk      : in    std_logic;
@@ -37,6 +39,7 @@ entity fastnms_record_output is
     in_x          : in    unsigned(X_BITS - 1 downto 0);
     in_y          : in    unsigned(Y_BITS - 1 downto 0);
     in_score      : in    unsigned(SCORE_BITS - 1 downto 0);
+    in_area       : in    unsigned(REC_AREA_WIDTH - 1 downto 0);
     in_eof        : in    std_logic;
     in_angle      : in    std_logic_vector(31 downto 0);
     in_descriptor : in    std_logic_vector(255 downto 0);
@@ -60,17 +63,19 @@ architecture rtl of fastnms_record_output is
 
   constant ORB : boolean := DESCRIPTOR = "orb";
 
-  -- ORB's payload: the angle (32 bits) and the descriptor (256).
-  function orb_bits return natural is
+  -- The payload: ORB's angle (32 bits) and descriptor (256), or the area.
+  function payload_width return natural is
   begin
 
     if ORB then
       return 288;
+    elsif AREA then
+      return REC_AREA_WIDTH;
     end if;
 
     return 0;
 
-  end function orb_bits;
+  end function payload_width;
 
   function record_beats return positive is
   begin
@@ -83,7 +88,7 @@ architecture rtl of fastnms_record_output is
 
   end function record_beats;
 
-  constant PAYLOAD_BITS : natural  := orb_bits;
+  constant PAYLOAD_BITS : natural  := payload_width;
   constant EXTRA_BITS   : positive := maximum(1, PAYLOAD_BITS);
   constant FIELD_BITS   : positive := X_BITS + Y_BITS + SCORE_BITS;
   -- A record from the packer: kind (2 bits, see fastnms_corner_pack), lost,
@@ -139,6 +144,9 @@ begin
   assert X_BITS <= REC_X_WIDTH and Y_BITS <= REC_Y_WIDTH and SCORE_BITS <= REC_SCORE_WIDTH
     report "fastnms_record_output: X_BITS, Y_BITS and SCORE_BITS must fit the record's fields"
     severity failure;
+  assert not (ORB and AREA)
+    report "fastnms_record_output: AREA (the region NMS) and DESCRIPTOR ""orb"" do not go together"
+    severity failure;
 
   -- ---- packer ------------------------------------------------------------------
 
@@ -165,7 +173,11 @@ begin
     k_extra <= in_angle & in_descriptor;
   end generate with_payload;
 
-  without_payload : if not ORB generate
+  with_area : if AREA generate
+    k_extra <= std_logic_vector(in_area);
+  end generate with_area;
+
+  without_payload : if PAYLOAD_BITS = 0 generate
     k_extra <= "0";
   end generate without_payload;
 
@@ -218,11 +230,11 @@ begin
   drop    <= p_valid and live and not q_fits;
   p_over  <= p_last and (lost or drop or p_lost);
 
-  fifo_in_payload : if ORB generate
+  fifo_in_payload : if PAYLOAD_BITS > 0 generate
     q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto 0);
   end generate fifo_in_payload;
 
-  fifo_in_fields : if not ORB generate
+  fifo_in_fields : if PAYLOAD_BITS = 0 generate
     q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto EXTRA_BITS);
   end generate fifo_in_fields;
 
@@ -317,6 +329,10 @@ begin
     f_word(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
     f_word(REC_OVERFLOW)                                        <= f_over;
     f_word(REC_ORB)                                             <= to_sl(ORB) and not f_empty;
+
+    if AREA then
+      f_word(REC_AREA_LSB + REC_AREA_WIDTH - 1 downto REC_AREA_LSB) <= f_data(REC_AREA_WIDTH - 1 downto 0);
+    end if;
 
   end process beat0;
 

@@ -12,7 +12,7 @@ package fastnms_regs_pkg is
 
   constant REG_ADDR_WIDTH : positive := 12;
   constant REG_DATA_WIDTH : positive := 32;
-  constant REG_COUNT      : positive := 16;
+  constant REG_COUNT      : positive := 17;
 
   -- Word indices.
   constant REG_ID           : natural := 0;
@@ -31,6 +31,7 @@ package fastnms_regs_pkg is
   constant REG_DROPPED      : natural := 13;
   constant REG_INPUT_STALLS : natural := 14;
   constant REG_BUDGET       : natural := 15;
+  constant REG_MIN_AREA     : natural := 16;
 
   -- ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
   constant ID_MAGIC_LSB   : natural                       := 0;
@@ -43,7 +44,7 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"05";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"06";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";
@@ -162,6 +163,13 @@ package fastnms_regs_pkg is
   constant BUDGET_CELL_WIDTH     : positive                     := 9;
   constant BUDGET_CELL_RESET     : std_logic_vector(8 downto 0) := "000010000";
 
+  -- MIN_AREA: The paper's region filtering (region NMS only; the other NMS ignore it): a region
+  -- with fewer corner pixels than VALUE has no record; for the frames whose first pixel is
+  -- accepted after the write's B response.
+  constant MIN_AREA_VALUE_LSB   : natural                       := 0;
+  constant MIN_AREA_VALUE_WIDTH : positive                      := 11;
+  constant MIN_AREA_VALUE_RESET : std_logic_vector(10 downto 0) := "00000000000";
+
   -- The corner record (tdata of m_axis_corners): beat 0, and with the ORB payload
   -- (record format 2) REC_ORB_BEATS beats; _BEAT: the beat that holds a field.
   constant REC_WIDTH            : positive := 64;
@@ -177,6 +185,8 @@ package fastnms_regs_pkg is
   constant REC_ABORTED          : natural  := 50;
   constant REC_OVERFLOW         : natural  := 51;
   constant REC_ORB              : natural  := 52;
+  constant REC_AREA_LSB         : natural  := 53;
+  constant REC_AREA_WIDTH       : positive := 11;
   constant REC_ANGLE_LSB        : natural  := 0;
   constant REC_ANGLE_WIDTH      : positive := 32;
   constant REC_ANGLE_BEAT       : natural  := 1;

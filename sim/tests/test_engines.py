@@ -36,19 +36,27 @@ def mixed_frames(rng: np.random.Generator) -> list[tuple[np.ndarray, int]]:
     ]
 
 
-def assert_golden(result: SimResult, frames, score: str, nms: str, seed: int) -> None:
+def assert_golden(
+    result: SimResult, frames, score: str, nms: str, seed: int, min_area: int = 0
+) -> None:
+    """Each frame's records and their AREA equal the golden model's (MIN_AREA `min_area`,
+    which only the region NMS applies)."""
     assert any(len(f.records) for f in result.frames), "no corner at all: a weak test"
+    if not nms.startswith("region"):
+        min_area = 0
     for i, ((img, t), got) in enumerate(zip(frames, result.frames, strict=True)):
-        want = detect(img, t, score, nms)
-        assert np.array_equal(got.records, want), (
+        want = detect(img, t, score, nms, min_area, with_area=True)
+        assert np.array_equal(got.records, want[:, :3]), (
             f"frame {i}: {len(got.records)} records, golden {len(want)} (seed {seed})"
         )
+        assert np.array_equal(got.areas, want[:, 3]), f"frame {i}: areas (seed {seed})"
 
 
 def assert_same_run(a: SimResult, b: SimResult) -> None:
     assert a.cycles == b.cycles and a.input_stalls == b.input_stalls
     for fa, fb in zip(a.frames, b.frames, strict=True):
         assert np.array_equal(fa.records, fb.records)
+        assert np.array_equal(fa.areas, fb.areas)
         assert (fa.cycles, fa.input_stalls) == (fb.cycles, fb.input_stalls)
         # Every record beat on the same clock (each engine counts from its own origin).
         assert np.array_equal(
@@ -115,16 +123,17 @@ ENGINE_PAIRS = [
 @pytest.mark.parametrize(("score", "nms"), ENGINE_PAIRS)
 def test_engines_agree(score: str, nms: str, rng, seed):
     """Both engines, three frames back to back, without and then with idles and
-    stalls: identical records and clock counts, equal to the golden model."""
+    stalls (and MIN_AREA 3, which only the region NMS applies): identical records,
+    areas and clock counts, equal to the golden model."""
     frames = mixed_frames(rng)
     busy = Timing(idle=Pattern(rate=0.25), stall=Pattern(rate=0.4), seed=seed % 1000)
     results = {}
-    for name, timing in [("free", Timing()), ("busy", busy)]:
-        fast = run_rtl(frames, score, nms, timing=timing)
-        assert_golden(fast, frames, score, nms, seed)
+    for name, timing, min_area in [("free", Timing(), None), ("busy", busy, 3)]:
+        fast = run_rtl(frames, score, nms, timing=timing, min_area=min_area)
+        assert_golden(fast, frames, score, nms, seed, min_area or 0)
         results[name] = fast
         if name == "busy":  # the cocotb engine once per variant: it is the slow one
-            slow = run_rtl(frames, score, nms, engine="cocotb", timing=timing)
+            slow = run_rtl(frames, score, nms, engine="cocotb", timing=timing, min_area=3)
             assert_same_run(fast, slow)
     # The pauses cost clocks; at one pixel per clock a free 3x3 frame takes W x H
     # plus its fill, and no input clock is lost to idles.

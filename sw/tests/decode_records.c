@@ -9,7 +9,8 @@
  * RECORDS: 64-bit little-endian record words. Prints each frame as
  *   frame INDEX first FIRST_WORD records N words N corners N stored N flags NAME,NAME|-
  * followed by one "X Y SCORE" line per stored corner ("X Y SCORE ANGLE DESCRIPTOR", in
- * hexadecimal, in an ORB frame of the stream mode); the one-shot mode ends with
+ * hexadecimal, in an ORB frame of the stream mode), with " area AREA" at its end when
+ * the corner's AREA is not 0 (region NMS); the one-shot mode ends with
  *   result CODE frames N corners N
  * Exit status 0, or 1 on a usage or file error.
  */
@@ -51,6 +52,8 @@ static void print_frame(const struct fastnms_frame *f)
             for (b = 0; b < sizeof f->orb[i].descriptor; b++)
                 printf("%02x", f->orb[i].descriptor[b]);
         }
+        if (f->corner[i].area != 0u)
+            printf(" area %u", f->corner[i].area);
         printf("\n");
     }
 }

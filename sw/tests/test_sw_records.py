@@ -1,8 +1,8 @@
 """The two record decoders, C (sw/fastnms.c, through sw/tests/decode_records.c) and
 Python (fastnms.sim.records), on the records the RTL emits (fastnms_axi on the fast
 engine) against each other and the golden model, and on hand-built streams: pieces,
-EMPTY, ABORTED and OVERFLOW frames, a stream that stops mid-frame, corner storage
-too small, malformed records, random words."""
+EMPTY, ABORTED and OVERFLOW frames, the region NMS's AREA, a stream that stops mid-frame,
+corner storage too small, malformed records, random words."""
 
 from __future__ import annotations
 
@@ -24,10 +24,20 @@ C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated
 
 
 def rec(
-    x=0, y=0, score=0, *, last=False, empty=False, aborted=False, overflow=False, orb=False
+    x=0,
+    y=0,
+    score=0,
+    *,
+    area=0,
+    last=False,
+    empty=False,
+    aborted=False,
+    overflow=False,
+    orb=False,
 ) -> int:
     """One record word (with `orb`, the first word of a record in format 2)."""
     word = x << regs.REC_X.lsb | y << regs.REC_Y.lsb | score << regs.REC_SCORE.lsb
+    word |= area << regs.REC_AREA.lsb
     for flag, fld in [
         (last, regs.REC_LAST),
         (empty, regs.REC_EMPTY),
@@ -56,7 +66,8 @@ def render(frames: list[Frame], capacity: int | None = None, orb: bool = True) -
         )
         for i, (x, y, s) in enumerate(f.corners[:stored]):
             payload = f" {f.angle_bits[i]:08x} {f.descriptors[i].hex()}" if f.orb and orb else ""
-            lines.append(f"{x} {y} {s}{payload}")
+            area = f" area {f.areas[i]}" if f.areas[i] else ""
+            lines.append(f"{x} {y} {s}{payload}{area}")
     return "".join(line + "\n" for line in lines)
 
 
@@ -123,8 +134,9 @@ def test_rtl_records_decode_to_the_golden_corners(rtl_run, c_programs, tmp_path)
     frames = decode_records(words)
     assert len(frames) == len(frames_in)
     for i, ((img, t), got, sim) in enumerate(zip(frames_in, frames, result.frames, strict=True)):
-        want = [tuple(int(v) for v in r) for r in detect(img, t, score, nms)]
-        assert sorted(got.corners, key=lambda c: (c[1], c[0])) == want, f"frame {i}"
+        want = [tuple(int(v) for v in r) for r in detect(img, t, score, nms, with_area=True)]
+        records = [(*c, a) for c, a in zip(got.corners, got.areas, strict=True)]
+        assert sorted(records, key=lambda c: (c[1], c[0])) == want, f"frame {i}"
         assert got.complete and not (got.aborted or got.overflow or got.malformed)
         assert got.empty == (not want) and got.records == len(sim.words) == max(1, len(want))
     assert frames[1].empty and frames[1].corners == []
@@ -236,12 +248,21 @@ def test_storage_too_small(c_programs, tmp_path):
     [
         [rec(empty=True), rec(3, 3, 9, last=True)],  # EMPTY without LAST
         [rec(3, 0, 0, last=True, empty=True)],  # EMPTY with a field set
+        [rec(area=1, last=True, empty=True)],  # EMPTY with an AREA
         [rec(3, 3, 9), EMPTY],  # EMPTY after a corner, without OVERFLOW
         [rec(last=True, empty=True, aborted=True)],  # EMPTY and ABORTED
         [rec(3, 3, 9, aborted=True), rec(4, 4, 9, last=True)],  # ABORTED without LAST
         [rec(3, 3, 9, overflow=True), rec(4, 4, 9, last=True)],  # OVERFLOW without LAST
     ],
-    ids=["empty-not-last", "empty-fields", "empty-after", "empty-aborted", "aborted", "overflow"],
+    ids=[
+        "empty-not-last",
+        "empty-fields",
+        "empty-area",
+        "empty-after",
+        "empty-aborted",
+        "aborted",
+        "overflow",
+    ],
 )
 def test_malformed_records(words, c_programs, tmp_path):
     """Flagged in their frame; the next LAST ends it and the next frame is clean."""
@@ -250,12 +271,29 @@ def test_malformed_records(words, c_programs, tmp_path):
     assert frames[-1].corners == [(5, 5, 50)] and not frames[-1].malformed
 
 
-def test_reserved_bits_are_ignored(c_programs, tmp_path):
-    high = ((1 << 64) - 1) & ~((1 << (regs.REC_ORB.lsb + 1)) - 1)
-    frames = decoded(c_programs, tmp_path, [rec(3, 4, 5) | high, rec(6, 7, 8, last=True) | high])
-    frames += decoded(c_programs, tmp_path, [EMPTY | high])
-    assert [f.flags for f in frames] == [[], ["empty"]]
-    assert frames[0].corners == [(3, 4, 5), (6, 7, 8)]
+def test_areas(c_programs, tmp_path):
+    """The region NMS's AREA (bits 63:53, saturating at 2047) with each corner, whatever
+    the pieces; 0 for a record without it; the EMPTY record has none."""
+    assert (regs.REC_AREA.lsb, regs.REC_AREA.width) == (53, 11)
+    assert regs.REC_AREA.lsb + regs.REC_AREA.width == 64  # beat 0 has no reserved bit left
+    words = [
+        rec(3, 4, 5, area=1),
+        rec(0xFFFF, 0xFFFF, 0xFFFF, area=2047),  # every field at its largest
+        rec(6, 7, 8),  # AREA 0: another NMS
+        rec(9, 10, 11, area=1024, last=True),
+        EMPTY,
+        rec(12, 13, 14, area=2, last=True, aborted=True),
+    ]
+    first, empty, aborted = decoded(c_programs, tmp_path, words, chunks=(0, 1, 2, 4))
+    assert first.corners == [(3, 4, 5), (0xFFFF, 0xFFFF, 0xFFFF), (6, 7, 8), (9, 10, 11)]
+    assert first.areas == [1, 2047, 0, 1024] and first.flags == []
+    assert empty.flags == ["empty"] and empty.corners == [] and empty.areas == []
+    assert aborted.flags == ["aborted"] and aborted.areas == [2]
+    # A corner's AREA stays with it in every frame, whatever the other fields.
+    (orb,) = decoded(c_programs, tmp_path, orb_record(40, 31, 27, 1, bytes(32), last=True))
+    assert orb.areas == [0]
+    got = c_stream(c_programs, tmp_path, words, 0)
+    assert "65535 65535 65535 area 2047\n" in got and "6 7 8\n" in got
 
 
 def orb_record(x, y, score, angle_bits: int, descriptor: bytes, **flags) -> list[int]:
@@ -315,6 +353,11 @@ def test_random_words(rng, c_programs, tmp_path):
         n = 1500
         words = rng.integers(0, 1 << 16, (n, 3), dtype=np.uint64)
         words = words[:, 0] | words[:, 1] << np.uint64(16) | words[:, 2] << np.uint64(32)
+        # AREA on about half the records (the region NMS's streams), 2047 among them
+        area = rng.integers(0, regs.REC_AREA.mask >> regs.REC_AREA.lsb, n, endpoint=True)
+        area[rng.random(n) < 0.5] = 0
+        area[rng.random(n) < 0.02] = 2047
+        words |= area.astype(np.uint64) << np.uint64(regs.REC_AREA.lsb)
         for fld, p in [
             (regs.REC_LAST, 0.2),
             (regs.REC_EMPTY, 0.1),

@@ -20,7 +20,7 @@ static int checks, failures;
 
 /* ---- the fake register file ---------------------------------------------------- */
 
-#define REGS 16u
+#define REGS 17u
 #define LOG 64u
 
 struct fake {
@@ -42,7 +42,7 @@ static uint32_t sticky(void)
 
 static bool valid_offset(uint32_t offset)
 {
-    return offset % 4u == 0u && offset <= FASTNMS_BUDGET_OFFSET;
+    return offset % 4u == 0u && offset <= FASTNMS_MIN_AREA_OFFSET;
 }
 
 static uint32_t fake_read(void *ctx, uint32_t offset)
@@ -169,6 +169,27 @@ static void test_budget(void)
     f.reg[FASTNMS_BUILD_OFFSET / 4u] = 512u;
     CHECK(fastnms_set_budget(&io, 64u, 1u) == FASTNMS_ERR_RANGE);
     CHECK(fastnms_set_budget(&io, 64u, 0u) == FASTNMS_OK);
+    CHECK(f.bad_accesses == 0u);
+}
+
+static void test_min_area(void)
+{
+    struct fake f;
+    struct fastnms_regs_io io;
+
+    fake_init(&f, &io);
+    CHECK(FASTNMS_AREA_MAX == 2047u);
+    CHECK(fastnms_set_min_area(&io, 5u) == FASTNMS_OK);
+    CHECK(reg(&f, FASTNMS_MIN_AREA_OFFSET) == 5u);
+    CHECK(fastnms_set_min_area(&io, 2047u) == FASTNMS_OK);
+    CHECK(reg(&f, FASTNMS_MIN_AREA_OFFSET) == 2047u);
+    CHECK(fastnms_set_min_area(&io, 0u) == FASTNMS_OK);
+    CHECK(reg(&f, FASTNMS_MIN_AREA_OFFSET) == 0u);
+    CHECK(f.writes == 3u && f.reads == 0u);
+    CHECK(fastnms_set_min_area(&io, 2048u) == FASTNMS_ERR_RANGE);
+    CHECK(fastnms_set_min_area(&io, 0xFFFFFFFFu) == FASTNMS_ERR_RANGE);
+    CHECK(f.writes == 3u);
+    CHECK(fastnms_set_min_area(NULL, 5u) == FASTNMS_ERR_ARG);
     CHECK(f.bad_accesses == 0u);
 }
 
@@ -360,16 +381,43 @@ static void test_decoder_arguments(void)
     CHECK(strcmp(fastnms_strerror(12345), "unknown") == 0);
 }
 
+/* A record's AREA (bits 63:53), 2047 the largest; the EMPTY record with an AREA is
+ * malformed. */
+static void test_decoder_area(void)
+{
+    struct fastnms_decoder dec;
+    struct fastnms_frame frame;
+    struct fastnms_corner corners[2];
+    const uint64_t words[3] = {
+        (uint64_t)7u << FASTNMS_REC_AREA_SHIFT | (uint64_t)9u << FASTNMS_REC_SCORE_SHIFT |
+            4u << FASTNMS_REC_Y_SHIFT | 3u,
+        (uint64_t)2047u << FASTNMS_REC_AREA_SHIFT | FASTNMS_REC_LAST_MASK | 5u,
+        (uint64_t)1u << FASTNMS_REC_AREA_SHIFT | FASTNMS_REC_EMPTY_MASK | FASTNMS_REC_LAST_MASK,
+    };
+    size_t used = 0;
+
+    CHECK(fastnms_decoder_init(&dec, corners, 2) == FASTNMS_OK);
+    CHECK(fastnms_decode(&dec, words, 3, &used, &frame) == FASTNMS_FRAME && used == 2u);
+    CHECK(frame.flags == 0u && frame.stored == 2u);
+    CHECK(frame.corner[0].x == 3u && frame.corner[0].y == 4u && frame.corner[0].score == 9u);
+    CHECK(frame.corner[0].area == 7u && frame.corner[1].area == FASTNMS_AREA_MAX);
+    CHECK(frame.corner[1].x == 5u && frame.corner[1].score == 0u);
+    CHECK(fastnms_decode(&dec, words + 2, 1, &used, &frame) == FASTNMS_FRAME);
+    CHECK(frame.flags == (FASTNMS_FRAME_EMPTY | FASTNMS_FRAME_MALFORMED));
+}
+
 int main(void)
 {
     test_probe();
     test_configure();
     test_budget();
+    test_min_area();
     test_ctrl();
     test_soft_reset();
     test_status_and_counters();
     test_bad_io();
     test_decoder_arguments();
+    test_decoder_area();
     if (failures) {
         printf("%d of %d checks failed\n", failures, checks);
         return 1;

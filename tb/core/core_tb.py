@@ -1,6 +1,7 @@
 """cocotb testbench of fastnms_core (detector + NMS): the corner records of
-each frame against the golden model's detect(), and, for opencv + 3x3,
-against cv2.FastFeatureDetector itself."""
+each frame (with the region NMS's areas, under a MIN_AREA that changes from
+frame to frame, which the other NMS ignore) against the golden model's
+detect(), and, for opencv + 3x3, against cv2.FastFeatureDetector itself."""
 
 from __future__ import annotations
 
@@ -26,6 +27,10 @@ NMS = GENERICS["NMS"]
 LATENCY = GENERICS.get("READ_LATENCY", 1)
 PPC = GENERICS.get("PPC", 1)
 MIN_WIDTH = min_width(7, PPC, LATENCY)
+REGION = NMS.startswith("region")
+RECORD_FIELDS = ("x", "y", "score", "area")
+# MIN_AREA of frame i (cfg_min_area), in turn.
+MIN_AREAS = (0, 3, 1, 2, 6, 2047, 4)
 
 
 def whole_beats(width: int) -> int:
@@ -45,25 +50,32 @@ def opencv_keypoints(img: np.ndarray, threshold: int) -> list[tuple[int, int, in
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall, ppc=PPC)
+        super().__init__(dut, ["x", "y", "score", "area", "eof"], idle, stall, ppc=PPC)
         dut._log.info("generics %s", GENERICS)
-        self.set_cfg(width=MIN_WIDTH, height=7, threshold=0)
+        self.set_cfg(width=MIN_WIDTH, height=7, threshold=0, min_area=0)
 
     async def run_frames(self, frames: list[tuple[np.ndarray, int]], label: str) -> None:
         images = [img for img, _ in frames]
-        cfgs = [{"width": i.shape[1], "height": i.shape[0], "threshold": t} for i, t in frames]
+        cfgs = [
+            {"width": img.shape[1], "height": img.shape[0], "threshold": t}
+            | {"min_area": MIN_AREAS[i % len(MIN_AREAS)]}
+            for i, (img, t) in enumerate(frames)
+        ]
         await self.send_frames(images, cfgs)
         total = sum(img.size for img in images)
         await self.wait_eofs(len(frames), int(total * 6 / max(0.05, 1 - max(IDLE, STALL))) + 5000)
-        records = split_records(self.sink.beats)
+        records = split_records(self.sink.beats, RECORD_FIELDS)
         for i, ((img, t), got) in enumerate(zip(frames, records, strict=True)):
-            name = f"{label} frame {i} ({img.shape[1]}x{img.shape[0]} t={t})"
-            want = [tuple(int(v) for v in r) for r in detect(img, t, SCORE, NMS)]
-            if NMS.startswith("region"):  # records leave as regions close
+            min_area = cfgs[i]["min_area"] if REGION else 0
+            name = f"{label} frame {i} ({img.shape[1]}x{img.shape[0]} t={t} min_area={min_area})"
+            want = detect(img, t, SCORE, NMS, min_area=min_area, with_area=True)
+            want = [tuple(int(v) for v in r) for r in want]
+            if REGION:  # records leave as regions close
                 got = sorted(got, key=lambda r: (r[1], r[0]))
             assert got == want, record_mismatch(got, want, name + " vs golden")
             if SCORE == "opencv" and NMS == "3x3":
                 cv = opencv_keypoints(img, t)
+                got = [r[:3] for r in got]
                 assert got == cv, record_mismatch(got, cv, name + " vs cv2.FAST")
             self.dut._log.info("%s: %d corners, equal", name, len(got))
         assert self.err_line == 0 and self.err_frame == 0
@@ -84,6 +96,30 @@ async def generated_images(dut):
         w, h = sizes[i % len(sizes)]
         frames.append((pattern(rng, w, h), threshold))
     await tb.run_frames(frames, "generated")
+
+
+@cocotb.test()
+async def region_filter(dut):
+    """MIN_AREA changing from frame to frame on content with regions of every size
+    (blurred noise at low thresholds), back to back: the region NMS drops exactly the
+    regions the golden model drops (and each frame drops some); the other NMS ignore it."""
+    tb = TB(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    w = whole_beats(min(MAX_WIDTH, 64))
+    frames = []
+    for min_area in MIN_AREAS:
+        # Draw frames until one whose regions MIN_AREA thins (when it can).
+        for _ in range(200):
+            img, t = testimages.blurred_noise(rng, w, 24), int(rng.integers(1, 12))
+            if not REGION or not 1 < min_area < 2047:
+                break
+            if len(detect(img, t, SCORE, NMS, min_area=min_area)) < len(detect(img, t, SCORE, NMS)):
+                break
+        else:
+            raise AssertionError(f"no frame that MIN_AREA {min_area} thins")
+        frames.append((img, t))
+    await tb.run_frames(frames, "region filter")
 
 
 @cocotb.test()
@@ -134,7 +170,7 @@ async def malformed_then_good(dut):
     records = split_records(tb.sink.beats)
     for img, got in zip(good, records[1:], strict=True):
         want = [tuple(int(v) for v in r) for r in detect(img, 10, SCORE, NMS)]
-        if NMS.startswith("region"):
+        if REGION:
             got = sorted(got, key=lambda r: (r[1], r[0]))
         assert got == want, record_mismatch(got, want, "frame after bad input")
     assert tb.err_frame > 0

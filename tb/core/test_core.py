@@ -29,7 +29,7 @@ def test_core_generated(request, score, nms):
         "fastnms_core",
         "core_tb",
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="generated_images,malformed_then_good",
+        testcase="generated_images,malformed_then_good,region_filter",
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )

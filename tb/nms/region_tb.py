@@ -1,6 +1,6 @@
 """cocotb testbench of fastnms_nms_region on its own: any corner/score map
 (not only what FAST can produce) against the golden model's region rule
-(fastnms.nms.nms_region), compared as sets of (x, y, score)."""
+(fastnms.nms.nms_region), compared as sets of (x, y, score, area)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from pathlib import Path
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
-from fastnms.golden.nms import nms_region
+from fastnms.golden.nms import AREA_MAX, nms_region
 from fastnms.testing.regions import SHAPES, comb, grid, nested_arches, serpentine, square_spiral
 
 from tb.stream import sim_ns, value
@@ -25,6 +25,7 @@ SCORE_BITS = GENERICS["SCORE_BITS"]
 CONNECTIVITY = GENERICS["CONNECTIVITY"]
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 MIN_WIDTH = 3  # fastnms_nms_region's narrowest row (the core's is 7)
+RECORD_FIELDS = ("x", "y", "score", "area")
 STALL = float(os.environ.get("TB_STALL", "0"))
 
 
@@ -45,7 +46,7 @@ def map_beats(corner: np.ndarray, score: np.ndarray) -> list[dict[str, int]]:
 
 class TB(VideoTB):
     def __init__(self, dut, idle: float = IDLE, stall: float = STALL):
-        super().__init__(dut, ["x", "y", "score", "eof"], idle, stall)
+        super().__init__(dut, ["x", "y", "score", "area", "eof"], idle, stall)
         dut._log.info("generics %s", GENERICS)
         self.set_cfg(width=3)
 
@@ -79,9 +80,10 @@ class TB(VideoTB):
             await self.source.send(map_beats(corner, score), on_accept=after)
         total = sum(c.size for c, _ in maps)
         await self.wait_eofs(eofs, 40 * total + 2000)
-        frames = split_records(self.sink.beats[start:])
+        frames = split_records(self.sink.beats[start:], RECORD_FIELDS)
         for i, ((corner, score), got) in enumerate(zip(maps, frames, strict=True)):
-            want = [tuple(int(v) for v in r) for r in nms_region(corner, score, CONNECTIVITY)]
+            want = nms_region(corner, score, CONNECTIVITY, with_area=True)
+            want = [tuple(int(v) for v in r) for r in want]
             name = f"{label} frame {i} ({corner.shape[1]}x{corner.shape[0]})"
             got = sorted(got, key=lambda r: (r[1], r[0]))
             assert got == want, record_mismatch(got, want, name)
@@ -135,6 +137,45 @@ async def shapes(dut):
     tb = TB(dut)
     await tb.reset()
     await tb.run_maps(stress_maps(MAX_WIDTH, tb.np_rng), "shapes")
+
+
+@cocotb.test()
+async def area_saturates(dut):
+    """Areas at the saturation: a region of AREA_MAX - 1, AREA_MAX and AREA_MAX + 1
+    pixels, and the whole frame (MAX_WIDTH x MAX_HEIGHT) when that is more."""
+    tb = TB(dut)
+    await tb.reset()
+    maps = []
+    for area in (AREA_MAX - 1, AREA_MAX, AREA_MAX + 1):
+        height = min(MAX_HEIGHT, -(-area // MAX_WIDTH) + 1)
+        if MAX_WIDTH * (height - 1) < area:
+            continue  # the build's frames are too small for this area
+        corner = np.zeros((height, MAX_WIDTH), dtype=bool)
+        corner.flat[:area] = True  # rows from the top: one region, then an empty row
+        maps.append((corner, (tb.np_rng.integers(0, 9, corner.shape) * corner).astype(np.int64)))
+    full = np.ones((MAX_HEIGHT, MAX_WIDTH), dtype=bool)
+    maps.append((full, tb.np_rng.integers(0, 9, full.shape).astype(np.int64)))
+    await tb.run_maps(maps, "areas")
+
+
+@cocotb.test()
+async def area_merges_saturated(dut):
+    """Two arms joined at the bottom (a U), either or both with more than AREA_MAX
+    pixels, so that a saturated area merges as either operand; and the same arms
+    joined at the top. Needs MAX_WIDTH x MAX_HEIGHT of at least 64 x 80."""
+    assert MAX_WIDTH >= 64 and MAX_HEIGHT >= 80, "a build too small for this test"
+    tb = TB(dut)
+    await tb.reset()
+    maps = []
+    for left, right in ((30, 2), (2, 30), (30, 30), (30, 1)):
+        for joined in ("bottom", "top"):
+            corner = np.zeros((80, 64), dtype=bool)
+            corner[:78, :left] = True
+            corner[:78, 64 - right :] = True
+            corner[77 if joined == "bottom" else 0, :] = True
+            score = tb.np_rng.integers(0, 9, corner.shape) * corner
+            maps.append((corner, score.astype(np.int64)))
+    await tb.run_maps(maps, "saturated merges")
 
 
 @cocotb.test()

@@ -53,10 +53,24 @@ def test_nms_region(request, connectivity, idle, stall):
         "fastnms_nms_region",
         "region_tb",
         generics,
-        testcase="shapes,random_maps,random_sequences,empty_and_reset,never_stalls,size_changes,"
-        "output_backpressure,idle_output",
+        testcase="shapes,area_saturates,random_maps,random_sequences,empty_and_reset,never_stalls,"
+        "size_changes,output_backpressure,idle_output",
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
+    )
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_nms_region_area_saturation(request, connectivity):
+    """Areas past AREA_MAX merging as either operand (a build large enough for them)."""
+    generics = {"MAX_WIDTH": 64, "MAX_HEIGHT": 80, "SCORE_BITS": 8, "CONNECTIVITY": connectivity}
+    run_cocotb(
+        "fastnms_nms_region",
+        "region_tb",
+        generics,
+        testcase="area_merges_saturated,area_saturates",
+        name=request.node.nodeid,
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
     )
 
 

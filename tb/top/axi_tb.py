@@ -304,6 +304,35 @@ async def generated_frames(dut):
 
 
 @cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
+async def region_filter(dut):
+    """MIN_AREA written with every frame (0 to 2047), frames back to back: each frame's
+    records with their AREA equal the golden model's at that MIN_AREA; with the region
+    NMS some frames lose regions to it, the 3x3 and none NMS ignore it (AREA 0)."""
+    tb = await TB.create(dut)
+    await tb.reset()
+    rng = tb.np_rng
+    region = NMS.startswith("region")
+    w, h = whole_beats(min(MAX_WIDTH, 48)), min(MAX_HEIGHT, 20)
+    min_areas = [3, 0, 2047, 5, 1, 2, 9]
+    frames = [(testimages.blurred_noise(rng, w, h), int(rng.integers(1, 9))) for _ in min_areas]
+    sender = cocotb.start_soon(tb.send_frames(frames, min_areas=min_areas))
+    got = await tb.receive(len(frames), 20 * w * h * len(frames) + 2000)
+    await sender
+    thinned = 0
+    for i, ((img, t), frame) in enumerate(zip(frames, got, strict=True)):
+        min_area = min_areas[i] if region else 0
+        want = [tuple(int(v) for v in r) for r in detect(img, t, SCORE, NMS, min_area, True)]
+        thinned += len(want) < len(detect(img, t, SCORE, NMS))
+        (decoded,) = decode_records(record_words(frame))
+        records = [(*c, a) for c, a in zip(decoded.corners, decoded.areas, strict=True)]
+        records = sorted(records, key=lambda r: (r[1], r[0]))
+        assert records == want, mismatch(records, want, f"frame {i} MIN_AREA {min_areas[i]}")
+    assert thinned >= (3 if region else 0), f"MIN_AREA dropped regions in {thinned} frames"
+    assert await tb.read(regs.MIN_AREA) == min_areas[-1]
+    dut._log.info("%d frames, %d thinned by MIN_AREA", len(frames), thinned)
+
+
+@cocotb.test(timeout_time=TIMEOUT_MS, timeout_unit="ms")
 async def real_images(dut):
     """Crops of real photographs (TB_CROPS: JSON list of [path, w, h, t])."""
     crops = json.loads(os.environ.get("TB_CROPS", "[]"))

@@ -1,9 +1,9 @@
 """cocotb testbench of fastnms_record_output: the core's keypoint stream in, record
 beats out, decoded by fastnms.sim.records (the Python twin of the C decoder) and
-compared with the keypoints sent: x, y, score and, with DESCRIPTOR "orb", the angle
-bits and the 32 descriptor bytes; out_last on each frame's last beat only; the
-status outputs counted clock by clock (sent_record, sent_last, dropped). Random
-input idles and output stalls, seeded (logged).
+compared with the keypoints sent: x, y, score, with AREA the area (0 without, whatever
+in_area is) and, with DESCRIPTOR "orb", the angle bits and the 32 descriptor bytes;
+out_last on each frame's last beat only; the status outputs counted clock by clock
+(sent_record, sent_last, dropped). Random input idles and output stalls, seeded (logged).
 
 - hold: live = 0, frames of 0 .. 20 keypoints (empty frames included) with the
   output stopped at times: nothing lost, in_ready low while the FIFO is full.
@@ -35,14 +35,15 @@ GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 X_BITS, Y_BITS = GENERICS["X_BITS"], GENERICS["Y_BITS"]
 SCORE_BITS = GENERICS["SCORE_BITS"]
 ORB = GENERICS["DESCRIPTOR"] == "orb"
+AREA = GENERICS.get("AREA", False)
 
-Keypoint = tuple[int, int, int, int, int]  # x, y, score, angle bits, descriptor
-END_OF_FRAME = {"x": 0, "y": 0, "score": 0, "angle": 0, "descriptor": 0, "eof": 1}
+Keypoint = tuple[int, int, int, int, int, int]  # x, y, score, angle bits, descriptor, area
+END_OF_FRAME = {"x": 0, "y": 0, "score": 0, "angle": 0, "descriptor": 0, "area": 0, "eof": 1}
 
 
 def _beat(k: Keypoint) -> dict[str, int]:
-    x, y, s, a, d = k
-    return {"x": x, "y": y, "score": s, "angle": a, "descriptor": d, "eof": 0}
+    x, y, s, a, d, area = k
+    return {"x": x, "y": y, "score": s, "angle": a, "descriptor": d, "area": area, "eof": 0}
 
 
 class TB:
@@ -55,7 +56,7 @@ class TB:
         dut.out_ready.value = 0
         for name in ("pipe_rst", "abort", "live", "in_eof", "in_dropped"):
             getattr(dut, name).value = 0
-        for name in ("in_x", "in_y", "in_score", "in_angle", "in_descriptor"):
+        for name in ("in_x", "in_y", "in_score", "in_area", "in_angle", "in_descriptor"):
             getattr(dut, name).value = 0
         self.source = StreamSource(dut, dut.clk, "in", self.rng, idle=0.25)
         self.sink = StreamSink(dut, dut.clk, "out", ["data", "last"], self.rng, stall=0.3)
@@ -92,6 +93,7 @@ class TB:
                 r.randrange(1 << SCORE_BITS),
                 r.getrandbits(32),
                 r.getrandbits(256),
+                r.choice([0, 1, 2047, r.randrange(2048)]),
             )
             for _ in range(n)
         ]
@@ -123,17 +125,24 @@ class TB:
 
 
 def expected(kps: list[Keypoint]) -> list[tuple]:
-    """The keypoints as a decoded frame shows them (no payload without ORB)."""
-    return [(x, y, s, a, d) if ORB else (x, y, s, 0, 0) for x, y, s, a, d in kps]
+    """The keypoints as a decoded frame shows them (no payload without ORB, no area
+    without AREA)."""
+    return [
+        (x, y, s, a, d, area if AREA else 0) if ORB else (x, y, s, 0, 0, area if AREA else 0)
+        for x, y, s, a, d, area in kps
+    ]
 
 
 def received(frame: Frame) -> list[tuple]:
     assert frame.orb == (ORB and bool(frame.corners)), f"ORB flag {frame.orb}"
+    areas = [int(a) for a in frame.areas]
     if not frame.orb:
-        return [(x, y, s, 0, 0) for x, y, s in frame.corners]
+        return [(x, y, s, 0, 0, area) for (x, y, s), area in zip(frame.corners, areas, strict=True)]
     return [
-        (x, y, s, a, int.from_bytes(d, "little"))
-        for (x, y, s), a, d in zip(frame.corners, frame.angle_bits, frame.descriptors, strict=True)
+        (x, y, s, a, int.from_bytes(d, "little"), area)
+        for (x, y, s), a, d, area in zip(
+            frame.corners, frame.angle_bits, frame.descriptors, areas, strict=True
+        )
     ]
 
 

@@ -46,7 +46,7 @@ def test_axi_frames(request, score, nms):
         "fastnms_axi",
         "axi_tb",
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="registers,generated_frames,empty_frame,score_video",
+        testcase="registers,generated_frames,empty_frame,score_video,region_filter",
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )

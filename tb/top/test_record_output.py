@@ -1,5 +1,6 @@
 """pytest entry: fastnms_record_output under GHDL, without and with the ORB payload
-(record format 2), at the smallest FIFO and one that is not a power of two."""
+(record format 2) or the region NMS's area, at the smallest FIFO and one that is not a
+power of two."""
 
 import pytest
 
@@ -13,6 +14,17 @@ CASES = [
     pytest.param(
         {"X_BITS": 11, "Y_BITS": 11, "SCORE_BITS": 8, "FIFO_DEPTH": 13, "DESCRIPTOR": "orb"},
         id="orb-fifo13",
+    ),
+    pytest.param(
+        {
+            "X_BITS": 11,
+            "Y_BITS": 11,
+            "SCORE_BITS": 12,
+            "FIFO_DEPTH": 8,
+            "DESCRIPTOR": "none",
+            "AREA": True,
+        },
+        id="area-fifo8",
     ),
 ]
 

@@ -101,6 +101,7 @@ begin
       cfg_threshold => cfg_threshold,
       cfg_cell_log  => (others => '0'),
       cfg_per_cell  => (others => '0'),
+      cfg_min_area  => (others => '0'),
       in_valid      => in_valid,
       in_ready      => in_ready,
       in_data       => in_data,
