@@ -23,9 +23,9 @@
 #                    figures, not for booting a board.
 #   --out DIR        project directory (default build/vivado/zc7z20)
 #   --ip-repo DIR    the IP repository of package_ip.tcl (default build/vivado/ip)
-#   --fclk-mhz F     FCLK_CLK0 in MHz (default 142.857143; 71.428571 with
-#                    --nms region4 or region8, whose region NMS reaches about
-#                    70 MHz, docs/results.md): must be the IO PLL's 1000 MHz
+#   --fclk-mhz F     FCLK_CLK0 in MHz (default 142.857143; 100 with --nms
+#                    region4 or region8, whose tops reach 121 to 136 MHz on
+#                    ECP5-8, docs/results.md): must be the IO PLL's 1000 MHz
 #                    divided by an integer (an error otherwise, with the
 #                    nearest values), and the script stops if the PS reports
 #                    another frequency.

@@ -30,6 +30,8 @@ namespace eval fastnms {
     # period, 7.000 ns.
     variable io_pll_mhz  1000.0
     variable fclk_divide 7
+    # With a region NMS: 1000 / 10 = 100 MHz (fastnms::fclk_mhz).
+    variable region_fclk_divide 10
 
     # RTL folders, lowest layer first.
     variable areas {common fast nms budget orb core top}
@@ -245,15 +247,19 @@ proc fastnms::divisor_pair {divide} {
 }
 
 # The default FCLK_CLK0 in MHz (io_pll_mhz / fclk_divide, 6 decimals). With
-# `nms` region4 or region8, half that (io_pll_mhz / (2 fclk_divide), 71.428571):
-# the region NMS reaches about 70 MHz (nextpnr ECP5-8, docs/results.md) and
-# has not been timed by Vivado; 1080p30 needs 62.2 Mpixel/s.
+# `nms` region4 or region8, io_pll_mhz / region_fclk_divide (100.000000): the
+# region tops reach 121 MHz (opencv + region8) and 136 MHz (sad + region4) on
+# ECP5-8 (nextpnr, docs/results.md) against the 3x3 top's 159 MHz, whose
+# default is 0.90 of that; 0.90 of 121 MHz is 109 MHz, and the IO PLL's next
+# clock below is 100 MHz. Not timed by Vivado; 1080p30 needs 62.2 Mpixel/s,
+# 1080p60 124.4.
 proc fastnms::fclk_mhz {{nms 3x3}} {
     variable io_pll_mhz
     variable fclk_divide
+    variable region_fclk_divide
     set divide $fclk_divide
     if {$nms in {region4 region8}} {
-        set divide [expr {2 * $fclk_divide}]
+        set divide $region_fclk_divide
     }
     return [format %.6f [expr {$io_pll_mhz / $divide}]]
 }

@@ -126,8 +126,8 @@ def test_ooc_period_is_the_bd_clock() -> None:
     assert period == pytest.approx(1000 / float(tcl("fastnms::fclk_mhz")), abs=0.0005)
     script = (VIVADO / "create_bd_zc7z20.tcl").read_text()
     assert "[fastnms::fclk_mhz [dict get $opts --nms]]" in script
-    # The region NMS (about 70 MHz) gets half the clock: 1000 / 14 MHz.
-    assert tcl("fastnms::fclk_mhz region4") == tcl("fastnms::fclk_mhz region8") == "71.428571"
+    # The region NMS tops (121 to 136 MHz on ECP5-8) get 1000 / 10 MHz.
+    assert tcl("fastnms::fclk_mhz region4") == tcl("fastnms::fclk_mhz region8") == "100.000000"
     assert tcl("fastnms::fclk_mhz none") == tcl("fastnms::fclk_mhz 3x3") == "142.857143"
     assert re.search(r"\[get_ports aclk\]", XDC.read_text())
     assert "142.857 MHz" in XDC.read_text()
@@ -471,11 +471,11 @@ def test_create_bd_with_implementation() -> None:
 
 @needs_tcl
 def test_create_bd_region_nms_default_clock() -> None:
-    """With a region NMS (about 70 MHz) FCLK_CLK0 defaults to 1000 / 14 MHz."""
-    results = {"get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "71.428571"}
+    """With a region NMS FCLK_CLK0 defaults to 1000 / 10 MHz."""
+    results = {"get_property CONFIG.PCW_ACT_FPGA0_PERIPHERAL_FREQMHZ": "100.000000"}
     root, run = bd_run("create_bd_region", ["--board", "zc702", "--nms", "region8"], results)
     run.assert_clean()
-    assert "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ 71.428571" in run.text
+    assert "CONFIG.PCW_FPGA0_PERIPHERAL_FREQMHZ 100.000000" in run.text
     assert "CONFIG.NMS region8" in run.text
 
 
