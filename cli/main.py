@@ -115,17 +115,25 @@ def budget_of(args: argparse.Namespace) -> tuple[int, int] | None:
     return None if args.cell is None else (args.cell, args.per_cell)
 
 
-def min_area_arg(text: str) -> int:
-    """argparse type: MIN_AREA, a decimal integer in 0..AREA_MAX (2047)."""
-    try:
-        value = int(text, 10)
-    except ValueError:
-        value = None
-    if value is None or not 0 <= value <= AREA_MAX:
-        raise argparse.ArgumentTypeError(
-            f"min-area must be an integer in 0..{AREA_MAX}, got {text!r}"
-        )
-    return value
+def int_in(name: str, low: int, high: int):
+    """An argparse type: a decimal integer in low..high, else the error naming `name`."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text, 10)
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError(
+                f"{name} must be an integer in {low}..{high}, got {text!r}"
+            )
+        return value
+
+    return parse
+
+
+# MIN_AREA, 0..AREA_MAX (2047).
+min_area_arg = int_in("min-area", 0, AREA_MAX)
 
 
 def is_region(args: argparse.Namespace) -> bool:
@@ -151,17 +159,8 @@ def with_areas(records: np.ndarray, areas: np.ndarray) -> np.ndarray:
     return np.column_stack([records, np.asarray(areas, np.int64)]).astype(np.int64)
 
 
-def per_cell_arg(text: str) -> int:
-    """argparse type: keypoints per cell, 1..15."""
-    try:
-        value = int(text, 10)
-    except ValueError:
-        value = None
-    if value is None or not 1 <= value <= MAX_PER_CELL:
-        raise argparse.ArgumentTypeError(
-            f"per-cell must be an integer in 1..{MAX_PER_CELL}, got {text!r}"
-        )
-    return value
+# Keypoints per cell, 1..15.
+per_cell_arg = int_in("per-cell", 1, MAX_PER_CELL)
 
 
 # ---- output files ----------------------------------------------------------------------
