@@ -66,6 +66,11 @@ MORE = [
     ("fastnms_axi_regs", {"ORB_MAX_CELL": 8}, "ORB_MAX_CELL must be at least 16"),
     ("fastnms_record_output", {"DESCRIPTOR": "sift"}, 'DESCRIPTOR must be "none" or "orb"'),
     ("fastnms_record_output", {"X_BITS": 17}, "X_BITS, Y_BITS and SCORE_BITS must fit"),
+    (
+        "fastnms_record_output",
+        {"DESCRIPTOR": "orb", "AREA": True},
+        'AREA (the region NMS) and DESCRIPTOR "orb" do not go together',
+    ),
     ("fastnms_axi", {"DESCRIPTOR": "orb"}, 'DESCRIPTOR must be "none" or "orb"; "orb" needs PPC 1'),
     ("fastnms_core", {"MAX_HEIGHT": 70000}, "MAX_WIDTH and MAX_HEIGHT must be in 7 .. 65535"),
     ("fastnms_fast_detector", {"SCORE": "harris"}, 'SCORE must be "opencv" or "sad"'),
