@@ -12,10 +12,10 @@
 -- merge by maximum; the record carries it saturated at 2 ** AREA_BITS - 1.
 -- Inside, an area is its count modulo 2 ** AREA_BITS and a flag set once
 -- the count has reached 2 ** AREA_BITS: the adder's carry out goes to the
--- flag, and no saturating multiplexer follows the adder. It selects only on the operation's
--- registered bits and on its own comparisons; nothing goes back to the
--- control but the registered writes, which the tables and the control see
--- landing.
+-- flag, and no saturating multiplexer follows the adder. It selects only on
+-- the operation's registered bits and on its own comparisons; nothing goes
+-- back to the control but the registered writes, which the tables and the
+-- control see landing.
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -96,9 +96,9 @@ architecture rtl of fastnms_nms_region_keys is
 
   constant AREA_ONE : area_t := to_unsigned(1, AB);
 
-  -- a + b + c (c 0 or 1): the counts' sum with c as the adder's carry in
-  -- (the low bit of 2a + 1 + 2b + c), the flag set by the carry out or by
-  -- either operand's.
+  -- a + b + c (c 0 or 1): the counts' sum, c on the carry chain's input
+  -- (one chain: a form with c folded in as an extra low bit took one
+  -- CARRY4 more), the flag set by the carry out or by either operand's.
   function area_sum (a : area_t; b : area_t; c : std_logic) return area_t is
     variable sum   : unsigned(AB - 1 downto 0);
     variable carry : unsigned(0 downto 0);
