@@ -312,7 +312,7 @@ def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
     model's records, and one pixel per clock whatever the content: every frame
     takes the same clocks from its first pixel to its end-of-frame beat, frames
     start W x H clocks apart (registers written between them), and the input
-    never waits."""
+    never waits; with MIN_AREA 3 the same clocks."""
     frames = hard_frames(rng, 1920, 40)
     result = run_rtl(frames, score, nms)
     assert_golden(result, frames, score, nms, seed)
@@ -321,6 +321,14 @@ def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
     assert [f.input_stalls for f in result.frames] == [0] * 10
     for (_img, t), f in zip(frames, result.frames, strict=True):
         print(f"t={t}: {len(f.records)} records, {f.cycles} clocks")
+    # The region filter (MIN_AREA 3) costs no clock: the same clocks per frame, frames
+    # W x H clocks apart, the input never held; the golden's records at MIN_AREA 3.
+    filtered = run_rtl(frames, score, nms, min_area=3)
+    assert_golden(filtered, frames, score, nms, seed, min_area=3)
+    assert sum(len(f.records) for f in filtered.frames) < sum(len(f.records) for f in result.frames)
+    assert [f.cycles for f in filtered.frames] == [f.cycles for f in result.frames]
+    assert np.diff([f.first_pixel for f in filtered.frames]).tolist() == [1920 * 40] * 9
+    assert [f.input_stalls for f in filtered.frames] == [0] * 10
 
 
 @pytest.mark.slow
