@@ -141,10 +141,11 @@ def region_memory(max_width: int, max_height: int, score_bits: int) -> dict:
         ("head table (first run of its class?, by row parity and slot; LUT RAM)", 2 * slots, 1),
         ("last table (last run of its class?, by slot; LUT RAM)", slots, 1),
         (
-            "data table (best key and area of the class, by slot; the paper's RAM score)",
+            "data table, keys (best key of the class, by slot; the paper's RAM score)",
             slots,
-            data_bits,
+            key_bits,
         ),
+        ("data table, areas (corner pixels of the class, by slot; LUT RAM)", slots, area_bits + 1),
         (
             "stack of open classes, slots, keys and areas (below its three registers)",
             stack_words,

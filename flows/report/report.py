@@ -1143,9 +1143,9 @@ def bram_note(summary: list[dict]) -> list[str]:
         f"Block RAM of the region configurations: {top['bram18_equiv']} BRAM18-equivalents "
         f"for `{top['config']}` against the paper's {PAPER['bram18_equiv']}. The region NMS "
         f"alone takes {block['bram18_equiv']} ({block.get('bram18', 0)} RAMB18 + "
-        f"{block.get('bram36', 0)} RAMB36) for its data table and stack, plus LUT RAM for "
-        "its bit memories (the row memory, the head and last tables) and its 8-record "
-        "FIFO; the bench section lists their bits.",
+        f"{block.get('bram36', 0)} RAMB36) for its data table's keys and its stack, plus "
+        "LUT RAM for its bit memories (the row memory, the head and last tables), the data "
+        "table's areas and its 8-record FIFO; the bench section lists their bits.",
         "",
     ]
 

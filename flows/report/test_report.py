@@ -123,10 +123,19 @@ def test_region_memory_breakdown():
     table into docs/results.md)."""
     mem = bench_sim.region_memory(1920, 1080, 12)
     # 960 slots of 10 bits; the row's bits two columns per word (960 x 2); a head bit per
-    # slot and row parity, a last bit per slot; keys
-    # of 12 + 11 + 11 bits with an area of 11 + 1 bits; 479 stack words of 2 x 10 + 46 bits
-    # (slots, key and area) and of 3 bits (flags); 8 records of 1 + 11 + 11 + 12 + 11 bits.
-    assert [r["bits"] for r in mem["breakdown"]] == [1920, 1920, 960, 44160, 31614, 1437, 368]
+    # slot and row parity, a last bit per slot; keys of 12 + 11 + 11 bits and, beside
+    # them, areas of 11 + 1 bits; 479 stack words of 2 x 10 + 46 bits (slots, key and
+    # area) and of 3 bits (flags); 8 records of 1 + 11 + 11 + 12 + 11 bits.
+    assert [r["bits"] for r in mem["breakdown"]] == [
+        1920,
+        1920,
+        960,
+        32640,
+        11520,
+        31614,
+        1437,
+        368,
+    ]
     assert mem["total_bits"] == 82379
     assert mem["paper_formula_bits"] == 960 * (12 + 11 + 11 + 10)
     assert mem["fifo5_bits"] == 115200

@@ -282,6 +282,9 @@ def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     mapped = netlist.with_suffix(".xc7.json")
     script = (
         f"read_verilog {netlist.name}; "
+        # GHDL's netlist carries no attributes: a fastnms_ram_sdp with STYLE
+        # "distributed" names its memory lut_style_mem, and gets yosys's attribute here.
+        f'setattr -set ram_style "distributed" */m:*lut_style_mem; '
         f"synth_xilinx -family xc7 -flatten -top {top}; "
         f"tee -q -o {stat.name} stat; write_json {mapped.name}"
     )

@@ -196,12 +196,13 @@ def test_window_3840_every_ppc(ppc, window):
 @pytest.mark.parametrize(("score", "nms"), [("sad", "region4"), ("opencv", "region8")])
 def test_core_region_1920(score, nms):
     """Detector + region NMS at 1920x1080: no latches; the detector's 6 BRAM18-equivalents
-    and the region NMS's 5 (data table: 3 for its 46-bit words of key and area; stack: 2);
-    LUT RAM only for the region NMS's bit memories (row memory 960 x 2, head table
-    2 x 960 x 1, last table 960 x 1: 15 + 30 + 15 RAM64M; the stack's flags 479 x 3:
-    8 RAM64M), its record FIFO (8 words of 1 + 11 + 11 + score + 11 bits: 8 RAM32M with
-    the 12-bit sad score, 7 with opencv's 8) and the core's configuration queue (8 frames'
-    MIN_AREA, 11 bits: 2 RAM32M); the region NMS's logic depth (see DEEPER) not exceeded."""
+    and the region NMS's 4 (the data table's keys: 2; stack: 2); LUT RAM only for the
+    region NMS's bit memories (row memory 960 x 2, head table 2 x 960 x 1, last table
+    960 x 1: 15 + 30 + 15 RAM64M; the stack's flags 479 x 3: 8 RAM64M), the data table's
+    areas (960 x 12: 60 RAM64M), its record FIFO (8 words of 1 + 11 + 11 + score + 11
+    bits: 8 RAM32M with the 12-bit sad score, 7 with opencv's 8) and the core's
+    configuration queue (8 frames' MIN_AREA, 11 bits: 2 RAM32M); the region NMS's logic
+    depth (see DEEPER) not exceeded."""
     generics = {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": score, "NMS": nms}
     netlist, messages = ghdl_synth("fastnms_core", generics)
     assert "latch" not in messages.lower(), messages
@@ -209,8 +210,8 @@ def test_core_region_1920(score, nms):
     print(score, nms, summary(cells))
     assert not any(cells.get(c) for c in LATCHES), cells
     lutram = {c: n for c, n in cells.items() if c in LUTRAM and n}
-    assert lutram == {"RAM64M": 68, "RAM32M": (8 if score == "sad" else 7) + 2}, cells
-    assert bram18_equivalents(cells) == 11, cells
+    assert lutram == {"RAM64M": 128, "RAM32M": (8 if score == "sad" else 7) + 2}, cells
+    assert bram18_equivalents(cells) == 10, cells
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
 
 

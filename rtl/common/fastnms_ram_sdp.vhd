@@ -38,12 +38,9 @@ architecture rtl of fastnms_ram_sdp is
 
   type mem_t is array (0 to DEPTH - 1) of std_logic_vector(WIDTH - 1 downto 0);
 
-  -- Zero in simulation only (sim_zeros).
-  signal mem      : mem_t := (others => sim_zeros(WIDTH));
   signal rd_array : std_logic_vector(WIDTH - 1 downto 0);
 
-  attribute ram_style        : string;
-  attribute ram_style of mem : signal is STYLE;
+  attribute ram_style : string;
 
 begin
 
@@ -55,27 +52,54 @@ begin
     report "fastnms_ram_sdp: STYLE must be ""block"", ""distributed"" or ""auto"""
     severity failure;
 
-  write_port : process (clk) is
+  -- The memory, in a generate named by its style. Vivado reads ram_style;
+  -- GHDL's netlist drops attributes but keeps the name (lut_style_mem),
+  -- from which the synthesis flow (flows/synth/synth.py) tells yosys.
+
+  other_style : if STYLE /= "distributed" generate
+    -- Zero in simulation only (sim_zeros).
+    signal mem : mem_t := (others => sim_zeros(WIDTH));
+
+    attribute ram_style of mem : signal is STYLE;
   begin
 
-    if rising_edge(clk) then
-      if wr_en = '1' then
-        mem(to_integer(wr_addr)) <= wr_data;
+    ports : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        if wr_en = '1' then
+          mem(to_integer(wr_addr)) <= wr_data;
+        end if;
+        if rd_en = '1' then
+          rd_array <= mem(to_integer(rd_addr));
+        end if;
       end if;
-    end if;
 
-  end process write_port;
+    end process ports;
 
-  read_port : process (clk) is
+  end generate other_style;
+
+  lut_style : if STYLE = "distributed" generate
+    signal mem : mem_t := (others => sim_zeros(WIDTH));
+
+    attribute ram_style of mem : signal is STYLE;
   begin
 
-    if rising_edge(clk) then
-      if rd_en = '1' then
-        rd_array <= mem(to_integer(rd_addr));
-      end if;
-    end if;
+    ports : process (clk) is
+    begin
 
-  end process read_port;
+      if rising_edge(clk) then
+        if wr_en = '1' then
+          mem(to_integer(wr_addr)) <= wr_data;
+        end if;
+        if rd_en = '1' then
+          rd_array <= mem(to_integer(rd_addr));
+        end if;
+      end if;
+
+    end process ports;
+
+  end generate lut_style;
 
   latency_1 : if READ_LATENCY = 1 generate
     rd_data <= rd_array;

@@ -84,9 +84,11 @@ end entity fastnms_nms_region_tables;
 
 architecture rtl of fastnms_nms_region_tables is
 
-  constant DB    : positive := data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
-  constant SLOTS : positive := slot_count(MAX_WIDTH);
-  constant SB    : positive := slot_bits(MAX_WIDTH);
+  constant DB : positive := data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS);
+  -- A data word's area: its count and saturation flag, the low bits.
+  constant AREA_WORD_BITS : positive := AREA_BITS + 1;
+  constant SLOTS          : positive := slot_count(MAX_WIDTH);
+  constant SB             : positive := slot_bits(MAX_WIDTH);
 
   -- A bit table's word address: the slot, then the bank (the row's parity;
   -- '0' in the last table, which has one bank).
@@ -281,19 +283,39 @@ begin
 
   end process reads_ahead;
 
-  data_table : entity work.fastnms_ram_sdp
+  -- The data words' keys in block RAM; their areas (AREA_BITS + 1, the low
+  -- bits) in LUT RAM beside them, at the same address and enables: in the
+  -- block RAM the areas would take the words past two BRAM18 side by side
+  -- (36 bits) into a third (docs/fastnms_nms_region.md, Memory).
+  data_keys : entity work.fastnms_ram_sdp
     generic map (
       DEPTH => SLOTS,
-      WIDTH => DB
+      WIDTH => DB - AREA_WORD_BITS
     )
     port map (
       clk     => clk,
       wr_en   => data_w_en,
       wr_addr => resize(data_w_slot, clog2(SLOTS)),
-      wr_data => std_logic_vector(data_w_key),
+      wr_data => std_logic_vector(data_w_key(DB - 1 downto AREA_WORD_BITS)),
       rd_en   => op_r.rv,
       rd_addr => resize(op_slot, clog2(SLOTS)),
-      rd_data => data_rd
+      rd_data => data_rd(DB - 1 downto AREA_WORD_BITS)
+    );
+
+  data_areas : entity work.fastnms_ram_sdp
+    generic map (
+      DEPTH => SLOTS,
+      WIDTH => AREA_WORD_BITS,
+      STYLE => "distributed"
+    )
+    port map (
+      clk     => clk,
+      wr_en   => data_w_en,
+      wr_addr => resize(data_w_slot, clog2(SLOTS)),
+      wr_data => std_logic_vector(data_w_key(AREA_WORD_BITS - 1 downto 0)),
+      rd_en   => op_r.rv,
+      rd_addr => resize(op_slot, clog2(SLOTS)),
+      rd_data => data_rd(AREA_WORD_BITS - 1 downto 0)
     );
 
   -- One bit per word: LUT RAM.
