@@ -1,0 +1,30 @@
+"""pytest entry: fastnms_nms_region_schedule alone under GHDL against a model
+of its contract (tb/nms/region_schedule_tb.py): small builds (MAX_WIDTH 16
+and an odd 13, so that rows wrap, frames change width and flushes overlap
+often) and a wide one (1920) with short and full-width rows."""
+
+import pytest
+
+from tb.harness import run_cocotb
+
+
+@pytest.mark.parametrize(
+    ("generics", "env"),
+    [
+        ({"MAX_WIDTH": 16, "MAX_HEIGHT": 15}, {"TB_FRAMES": "400", "TB_TALLEST": "15"}),
+        ({"MAX_WIDTH": 13, "MAX_HEIGHT": 5}, {"TB_FRAMES": "200", "TB_TALLEST": "5"}),
+        (
+            {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080},
+            {"TB_FRAMES": "40", "TB_TALLEST": "3", "TB_WIDE": "40", "TB_RESETS": "2"},
+        ),
+    ],
+    ids=["w16", "w13", "w1920"],
+)
+def test_nms_region_schedule(request, generics, env):
+    run_cocotb(
+        "fastnms_nms_region_schedule",
+        "region_schedule_tb",
+        generics,
+        name=request.node.nodeid,
+        env=env,
+    )
