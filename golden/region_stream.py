@@ -94,7 +94,7 @@ class Stats:
     clocks: int = 0
     # Full-key merges (two classes, step 3) with an operand that the previous step's full-key
     # merge produced: the hardware cannot compare it on registers of its own before then
-    # (fastnms_nms_region.md, Limits). By the column of the second merge: 0, or later.
+    # (fastnms_nms_region.md, Depth and clock). By the column of the second merge: 0, or later.
     chained_merges_col0: int = 0
     chained_merges_in_row: int = 0
 

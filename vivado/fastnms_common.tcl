@@ -30,8 +30,8 @@ namespace eval fastnms {
     # period, 7.000 ns.
     variable io_pll_mhz  1000.0
     variable fclk_divide 7
-    # With a region NMS: 1000 / 10 = 100 MHz (fastnms::fclk_mhz).
-    variable region_fclk_divide 10
+    # With a region NMS: 1000 / 8 = 125 MHz (fastnms::fclk_mhz).
+    variable region_fclk_divide 8
 
     # RTL folders, lowest layer first.
     variable areas {common fast nms budget orb core top}
@@ -247,12 +247,10 @@ proc fastnms::divisor_pair {divide} {
 }
 
 # The default FCLK_CLK0 in MHz (io_pll_mhz / fclk_divide, 6 decimals). With
-# `nms` region4 or region8, io_pll_mhz / region_fclk_divide (100.000000): the
-# region tops reach 121 MHz (opencv + region8) and 136 MHz (sad + region4) on
-# ECP5-8 (nextpnr, docs/results.md) against the 3x3 top's 159 MHz, whose
-# default is 0.90 of that; 0.90 of 121 MHz is 109 MHz, and the IO PLL's next
-# clock below is 100 MHz. Not timed by Vivado; 1080p30 needs 62.2 Mpixel/s,
-# 1080p60 124.4.
+# `nms` region4 or region8, io_pll_mhz / region_fclk_divide: the fastest IO PLL
+# clock at most 0.90 of the slower region top's ECP5-8 Fmax in docs/results.md,
+# as the 3x3's default was chosen (flows/vivado_check/test_vivado_tcl.py checks
+# it against results.md). Not timed by Vivado; 1080p60 needs 124.4 Mpixel/s.
 proc fastnms::fclk_mhz {{nms 3x3}} {
     variable io_pll_mhz
     variable fclk_divide

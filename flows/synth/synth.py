@@ -16,6 +16,13 @@ from pathlib import Path
 from fastnms.sim.sources import REPO, rtl_sources
 
 SYNTH_BUILD = REPO / "build" / "synth"
+# Probes of designs not built (docs/fastnms_nms_region.md, Depth and clock).
+PROBES = Path(__file__).resolve().parent / "probes"
+
+
+def probe_sources(entity: str) -> list[Path]:
+    """A probe's sources: fastnms_pkg, then the probe's file (PROBES/ENTITY.vhd)."""
+    return [REPO / "rtl" / "common" / "fastnms_pkg.vhd", PROBES / f"{entity}.vhd"]
 
 
 def ghdl_synth(
@@ -274,6 +281,12 @@ def netlist_problems(netlist: Path, top: str) -> str:
     return (proc.stdout + proc.stderr).strip()
 
 
+# GHDL's netlist carries no attributes: a fastnms_ram_sdp with STYLE "distributed"
+# names its memory lut_style_mem, and gets yosys's attribute from this command (the
+# xc7 and the ECP5 scripts both run it before their synth_ pass).
+DISTRIBUTED_STYLE = 'setattr -set ram_style "distributed" */m:*lut_style_mem; '
+
+
 def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     """Map a netlist to xc7 cells; return the cell counts of the flattened
     design (e.g. {'LUT6': 12, 'FDRE': 40, 'RAMB36E1': 3}) plus the key
@@ -281,10 +294,7 @@ def yosys_xc7(netlist: Path, top: str) -> dict[str, int]:
     stat = netlist.with_suffix(".stat.txt")
     mapped = netlist.with_suffix(".xc7.json")
     script = (
-        f"read_verilog {netlist.name}; "
-        # GHDL's netlist carries no attributes: a fastnms_ram_sdp with STYLE
-        # "distributed" names its memory lut_style_mem, and gets yosys's attribute here.
-        f'setattr -set ram_style "distributed" */m:*lut_style_mem; '
+        f"read_verilog {netlist.name}; {DISTRIBUTED_STYLE}"
         f"synth_xilinx -family xc7 -flatten -top {top}; "
         f"tee -q -o {stat.name} stat; write_json {mapped.name}"
     )

@@ -13,6 +13,7 @@ from flows.synth.synth import (
     ghdl_synth,
     levels_by_register,
     netlist_problems,
+    probe_sources,
     summary,
     yosys_xc7,
 )
@@ -25,7 +26,7 @@ MAX_LOGIC_LEVELS = 4
 # clock ahead of its data path, which still compares keys, selects the best
 # and routes it through a pop in one clock: yosys maps it into 7 levels,
 # alone and inside a core; a merge of two keys in one clock alone takes 5
-# (test_one_clock_key_merge_depth, docs/fastnms_nms_region.md, *Limits*).
+# (test_one_clock_key_merge_depth, docs/fastnms_nms_region.md, *Depth and clock*).
 DEEPER = {
     # The same RTL maps to 4 or 5 levels depending on the netlist around it:
     # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
@@ -215,14 +216,10 @@ def test_core_region_1920(score, nms):
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
 
 
-PROBES = Path(__file__).resolve().parent / "probes"
-
-
 def probe_cells(entity: str, generics: dict[str, object], tmp_path: Path) -> dict[str, int]:
     """A probe of flows/synth/probes (entity in the file of its name, which may use
     fastnms_pkg) through the core's synthesis flow: its xc7 cell counts and logic levels."""
-    sources = [PROBES.parents[2] / "rtl" / "common" / "fastnms_pkg.vhd", PROBES / f"{entity}.vhd"]
-    netlist, _ = ghdl_synth(entity, generics, tmp_path, sources)
+    netlist, _ = ghdl_synth(entity, generics, tmp_path, probe_sources(entity))
     cells = yosys_xc7(netlist, entity)
     print(entity, generics, summary(cells))
     return cells
@@ -238,7 +235,7 @@ def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
     one clock (the better key chosen, the choice a register) map into 5 levels with the
     region NMS's keys (score, row, column: 34 bits with sad scores at 1920x1080, 30 with
     opencv), 3 when the keys are scores (12, 8 bits) and the raster order of the two
-    pixels is a register beside them. Exact, so that docs/fastnms_nms_region.md (Limits)
+    pixels is a register beside them. Exact, so that docs/fastnms_nms_region.md (Depth and clock)
     follows the tools."""
     generics = {"KEY_BITS": key_bits, "ORDER_FLAG": str(order_flag).lower()}
     cells = probe_cells("key_merge", generics, tmp_path)
@@ -254,7 +251,7 @@ def test_registered_key_compare_depth(key_bits, levels, tmp_path):
     """A region key comparison as a stage of its own (two key registers in, the result a
     register) maps into 4 levels with the region NMS's 34- and 30-bit keys, 2 with a
     12-bit score: a design that compares full keys a clock ahead has no level left in
-    that stage for anything else. Exact, so that docs/fastnms_nms_region.md (Limits)
+    that stage for anything else. Exact, so that docs/fastnms_nms_region.md (Depth and clock)
     follows the tools."""
     cells = probe_cells("key_compare", {"KEY_BITS": key_bits}, tmp_path)
     assert cells["logic_levels"] == levels, cells
@@ -271,7 +268,7 @@ def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
     write) with the tie rule as order flags (scores compared in the clock) maps into 6 or
     7 levels, as many as the block: order flags alone do not reach 4. With every
     comparison of the column a register, 3: a 4-level data path needs its comparisons
-    made a clock ahead. Exact, so that docs/fastnms_nms_region.md (Limits) follows the
+    made a clock ahead. Exact, so that docs/fastnms_nms_region.md (Depth and clock) follows the
     tools."""
     generics = {
         "SCORE_BITS": score_bits,
@@ -299,7 +296,7 @@ def test_key_flags_depth(decided_ahead, pixel_ahead, levels, tmp_path):
     levels, 5 with the next pixel's comparisons made a clock ahead, 8 and 7 with the
     column's decision itself made a clock ahead from the next flags: none of these
     reaches 4. tb/probes/ simulates the probe against a model. Exact, so that
-    docs/fastnms_nms_region.md (Limits) follows the tools."""
+    docs/fastnms_nms_region.md (Depth and clock) follows the tools."""
     generics = {
         "SCORE_BITS": 12,
         "POS_BITS": 22,
@@ -317,7 +314,7 @@ def test_step_control_depth(connectivity, tmp_path):
     inputs to a registered operation code, no slot, key or address) maps into 3 levels,
     against 7 for the whole step: the depth is in routing slots and keys by decisions
     made in the same clock, which a 4-level design must do a clock after them. Exact,
-    so that docs/fastnms_nms_region.md (Limits) follows the tools."""
+    so that docs/fastnms_nms_region.md (Depth and clock) follows the tools."""
     cells = probe_cells("step_control", {"CONNECTIVITY": connectivity}, tmp_path)
     assert cells["logic_levels"] == 3, cells
 

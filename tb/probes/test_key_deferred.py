@@ -4,7 +4,7 @@ flows/synth/test_probes_deferred.py)."""
 
 import pytest
 
-from flows.synth.test_synth import PROBES
+from flows.synth.synth import PROBES
 from tb.harness import run_cocotb
 
 

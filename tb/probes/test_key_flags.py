@@ -3,7 +3,7 @@ the keys themselves (its depth is pinned by flows/synth/test_synth.py)."""
 
 import pytest
 
-from flows.synth.test_synth import PROBES
+from flows.synth.synth import PROBES
 from tb.harness import run_cocotb
 
 

@@ -2,7 +2,7 @@
 -- own, from two key registers to a registered result, as a region NMS that
 -- precomputes its comparisons a clock ahead would make them.
 -- flows/synth/test_synth.py maps it with the same flow as the core and
--- records its logic levels (docs/fastnms_nms_region.md, Limits).
+-- records its logic levels (docs/fastnms_nms_region.md, Depth and clock).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,7 +1,7 @@
 -- Probe, not part of the core: the region NMS's key data path
 -- (rtl/nms/fastnms_nms_region.vhd, process apply) with its comparisons made
 -- ahead and kept up to date as order flags, to measure the depth of such a
--- data path in this flow (docs/fastnms_nms_region.md, Limits).
+-- data path in this flow (docs/fastnms_nms_region.md, Depth and clock).
 --
 -- Seven key registers: the stack's top, second and third (T, S, R), the
 -- current class (C), the pushed word of this column and of the next (W, N),

@@ -14,7 +14,7 @@
 -- The flags and comparisons come in as registers; keeping them up to date
 -- is left out, so the probe measures a lower bound on such a data path's
 -- depth. flows/synth/test_synth.py maps it with the same flow as the core
--- and records its logic levels (docs/fastnms_nms_region.md, Limits).
+-- and records its logic levels (docs/fastnms_nms_region.md, Depth and clock).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

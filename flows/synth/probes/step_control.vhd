@@ -6,7 +6,7 @@
 -- and keys follow them a clock later. The stack's depth is left out (kept as
 -- registers beside it, it is not on these paths). flows/synth/test_synth.py
 -- maps it with the same flow as the core and records its logic levels
--- (docs/fastnms_nms_region.md, Limits).
+-- (docs/fastnms_nms_region.md, Depth and clock).
 library ieee;
   use ieee.std_logic_1164.all;
 
