@@ -48,10 +48,6 @@ DEEPER = {
     "fastnms_nms_region_keys": 8,
     "fastnms_nms_region_control": 5,
     "fastnms_nms_region_tables": 5,
-    # Its insertion maps into 3 levels (fastnms_budget_insert); its decode of a beat
-    # (in_y against the last record's line above the cell, the beat's flags, the input
-    # buffer's multiplexer) into 5 (docs/fastnms_cell_budget.md, *Limits*): not yet at 4.
-    "fastnms_cell_budget": 5,
     # The float32 units' carry chains are not split yet: the rounding increment into
     # the exponent (mul, add) and the 31-bit magnitude compare and 27-bit add (add)
     # are 6 to 8 CARRY4 long, and the angle unit adds its division step and

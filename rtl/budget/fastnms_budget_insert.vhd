@@ -65,6 +65,35 @@ architecture rtl of fastnms_budget_insert is
 
   subtype flags_t is std_logic_vector(0 to K_MAX - 1);
 
+  -- A same-cell compare in two clocks: its parts (3 bits of the cells each, then the
+  -- banks and the valid bit) registered, then their and.
+  constant PARTS : positive := (clog2(CELLS) + 2) / 3 + 1;
+
+  subtype parts_t is std_logic_vector(0 to PARTS - 1);
+
+  type parts_4_t is array (0 to 3) of parts_t;
+
+  -- The parts of (valid and bank = other_bank and cell = other_cell).
+  function same_parts (cell : addr_t; bank : bank_t; valid : std_logic; other_cell : addr_t;
+    other_bank : bank_t) return parts_t is
+    variable result : parts_t;
+  begin
+
+    result := (others => '1');
+
+    for i in 0 to cell'length - 1 loop
+
+      if cell(i) /= other_cell(i) then
+        result(i / 3) := '0';
+      end if;
+
+    end loop;
+
+    result(PARTS - 1) := valid and to_sl(bank = other_bank);
+    return result;
+
+  end function same_parts;
+
   -- Stage D's word: the record e inserted where the entries stop beating it, the
   -- entries after it moved down, entries from index k on (mask) invalid.
   function inserted (w : word_t; e : entry_t; b : flags_t; mask : flags_t) return word_t is
@@ -101,6 +130,7 @@ architecture rtl of fastnms_budget_insert is
   signal a_cell  : addr_t;
   signal a_entry : entry_t;
   signal a_mask  : flags_t;
+  signal a_same  : parts_4_t; -- the parts of b_from_w, b_from_v, b_near_1, b_near_2
 
   -- Stage B: the record, the base word chosen.
   signal b_valid  : std_logic;
@@ -139,8 +169,6 @@ architecture rtl of fastnms_budget_insert is
   signal d_beats  : flags_t;
   signal d_new    : word_t;
   signal w_valid  : std_logic; -- stage D wrote last clock: its record and word
-  signal w_bank   : bank_t;
-  signal w_cell   : addr_t;
   signal w_entry  : entry_t;
   signal w_word   : word_t;
   signal v_word   : word_t;    -- the word stage D wrote two clocks ago
@@ -167,6 +195,12 @@ begin
       a_bank  <= in_bank;
       a_cell  <= in_cell;
       a_entry <= in_entry;
+      -- The same-cell compares of stage B a clock ahead: the record against the ones
+      -- that will be in stage D, written last clock, in stage B and in stage C then.
+      a_same(0) <= same_parts(c_cell, c_bank, c_valid, in_cell, in_bank);
+      a_same(1) <= same_parts(d_cell, d_bank, d_valid, in_cell, in_bank);
+      a_same(2) <= same_parts(a_cell, a_bank, a_valid, in_cell, in_bank);
+      a_same(3) <= same_parts(b_cell, b_bank, b_valid, in_cell, in_bank);
 
       for j in 0 to K_MAX - 1 loop
 
@@ -182,10 +216,10 @@ begin
       b_cell   <= a_cell;
       b_entry  <= a_entry;
       b_mask   <= a_mask;
-      b_from_w <= d_valid and to_sl(d_bank = a_bank and d_cell = a_cell);
-      b_from_v <= w_valid and to_sl(w_bank = a_bank and w_cell = a_cell);
-      b_near_1 <= b_valid and to_sl(b_bank = a_bank and b_cell = a_cell);
-      b_near_2 <= c_valid and to_sl(c_bank = a_bank and c_cell = a_cell);
+      b_from_w <= and a_same(0);
+      b_from_v <= and a_same(1);
+      b_near_1 <= and a_same(2);
+      b_near_2 <= and a_same(3);
 
       -- C: the base word (the newest of the two forwarded words and the read), and
       -- which of the two records after the base's are in the same cell.
@@ -222,8 +256,6 @@ begin
       d_mask  <= c_mask;
 
       w_valid <= d_valid;
-      w_bank  <= d_bank;
-      w_cell  <= d_cell;
       w_entry <= d_entry;
       w_word  <= d_new;
       v_word  <= w_word;

@@ -1,12 +1,25 @@
 -- The keypoint budget's memory word (fastnms_cell_budget): one word per cell,
 -- K entries best first, entry j in bits (j + 1) * E - 1 .. j * E. An entry is
 -- a valid bit, the score, then y and x inside the cell (8 bits each):
--- E = 1 + SCORE_BITS + 16 bits.
+-- E = 1 + SCORE_BITS + 16 bits. Also the decoded beat's kind, as flags
+-- (fastnms_budget_decode to the parent's decision).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 package fastnms_budget_pkg is
+
+  -- A decoded beat's flags: bit F_* set when the beat is so. Each beat has one of
+  -- F_OUT, F_FREE, F_ENDS, F_FILL and F_OTHER: what it waits for.
+  constant F_OUT    : natural  := 0; -- K = 0 and not a row-end beat: the beat leaves
+  constant F_FREE   : natural  := 1; -- a row-end beat that queues no job: it waits for nothing
+  constant F_ENDS   : natural  := 2; -- an end of frame or a row-end beat that closes the row (K > 0)
+  constant F_FILL   : natural  := 3; -- a record into the bank being filled (K > 0)
+  constant F_OTHER  : natural  := 4; -- a record into the other bank: F_FILL's, F_SWITCH (K > 0)
+  constant F_INSERT : natural  := 5; -- F_FILL or F_OTHER: a record to insert
+  constant F_SWITCH : natural  := 6; -- a record of a later cell row than the last record
+  constant F_FIRST  : natural  := 7; -- a record that opens a cell row (no row open, or F_SWITCH)
+  constant F_BITS   : positive := 8;
 
   -- E, the bits of an entry.
   function entry_width (score_bits : positive) return positive;

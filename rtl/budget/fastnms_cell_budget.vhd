@@ -19,7 +19,8 @@
 -- end-of-frame beat. With K = 0 the records and end of frame pass in order.
 -- Row-end beats never leave the block.
 --
--- How (docs/fastnms_cell_budget.md): the best K of each cell of the cell row
+-- How (docs/fastnms_cell_budget.md): each beat is decoded in two clocks
+-- (fastnms_budget_decode: its frame's CELL and K, its kind as flags). The best K of each cell of the cell row
 -- being filled are kept sorted in one memory word per cell (K entries of a
 -- valid bit, score and position in the cell, fastnms_budget_pkg), updated at
 -- one record per clock by fastnms_budget_insert (read, choose the base word,
@@ -137,20 +138,6 @@ begin
     constant WORD_BITS  : positive := K_MAX * ENTRY_BITS;     -- entries best first
     constant JOB_SLOTS  : positive := 4;
 
-    -- The input beat after decoding, as the input buffer holds it: the beat, its
-    -- frame's CELL (log) and K, and its kind as flags (F_*), so that the decision
-    -- reads registers only.
-    constant F_PASS   : natural  := 0; -- K = 0
-    constant F_OUT    : natural  := 1; -- K = 0 and not a row-end beat: the beat leaves
-    constant F_MARKER : natural  := 2; -- a row-end beat
-    constant F_INSERT : natural  := 3; -- a record to insert (K > 0)
-    constant F_SWITCH : natural  := 4; -- a record of a later cell row than the last record
-    constant F_FIRST  : natural  := 5; -- a record that opens a cell row (no row open, or F_SWITCH)
-    constant F_PUSH   : natural  := 6; -- queues a job (K > 0): F_SWITCH, an end of frame or F_CLOSE
-    constant F_ENDS   : natural  := 7; -- F_PUSH for an end of frame or F_CLOSE: the row closes
-    constant F_BITS   : positive := 8;
-    constant D_BITS   : positive := BEAT_BITS + 3 + 4 + F_BITS;
-
     subtype word_t is std_logic_vector(WORD_BITS - 1 downto 0);
 
     subtype entry_t is std_logic_vector(ENTRY_BITS - 1 downto 0);
@@ -180,31 +167,10 @@ begin
 
     type jobs_t is array (0 to JOB_SLOTS - 1) of job_t;
 
-    -- The bits of a coordinate inside a cell of 16 << log pixels.
-    function cell_mask (log : log_t) return unsigned is
-    begin
-
-      return shift_right(to_unsigned(255, 16), 4 - log);
-
-    end function cell_mask;
-
-    -- Input side: the frame's configuration (its first beat's), the last record's line.
-    signal i_take    : std_logic;
-    signal i_ready   : std_logic;
-    signal i_started : std_logic;
-    signal i_open    : std_logic; -- a record went in since the frame's start or the last close
-    signal i_close   : std_logic; -- the beat is a row-end beat that closes the open cell row
-    signal i_log     : log_t;
-    signal i_k       : natural range 0 to K_MAX;
-    signal i_pass    : std_logic;             -- i_k = 0
-    signal i_in_cell : unsigned(15 downto 0); -- cell_mask(i_log), registered with it
-    signal i_last_y  : unsigned(Y_BITS - 1 downto 0);
-    signal i_data    : std_logic_vector(D_BITS - 1 downto 0);
-
-    -- The decoded beat, out of the input buffer.
+    -- The decoded beat (fastnms_budget_decode): with its frame's CELL (log) and K,
+    -- its kind as flags (F_*).
     signal s_valid  : std_logic;
     signal s_ready  : std_logic;
-    signal s_data   : std_logic_vector(D_BITS - 1 downto 0);
     signal s_beat   : beat_t;
     signal s_flags  : std_logic_vector(F_BITS - 1 downto 0);
     signal s_eof    : std_logic;
@@ -214,11 +180,13 @@ begin
     signal s_log    : log_t;
     signal s_k      : natural range 0 to K_MAX;
     signal s_y0     : unsigned(Y_BITS - 1 downto 0); -- the first line of the record's cell row
+    signal s_cell_x : unsigned(X_BITS - 1 downto 0); -- the record's cell, registered
     signal s_cell   : addr_t;
     signal s_offset : std_logic_vector(15 downto 0); -- y and x inside the cell
 
     -- Decision.
     signal take       : std_logic;
+    signal go_other   : std_logic; -- F_OTHER with a place in the queue and the other bank free
     signal pass       : std_logic;
     signal target     : bank_t;
     signal insert_now : std_logic;
@@ -289,130 +257,55 @@ begin
 
   begin
 
-    -- ---- input side: decode each beat with its frame's configuration --------------------
+    -- ---- input side: each beat decoded with its frame's configuration, in two clocks ----
 
-    i_take <= in_valid and i_ready;
-
-    decode : process (all) is
-
-      variable log      : log_t;
-      variable k        : natural range 0 to K_MAX;
-      variable k_zero   : std_logic;
-      variable y_wide   : unsigned(15 downto 0);
-      variable a_record : std_logic;
-      variable differs  : std_logic; -- y is in another cell row than the last record
-      variable at_last  : std_logic; -- y is the last line of its cell row
-      variable closed   : std_logic;
-      variable flags    : std_logic_vector(F_BITS - 1 downto 0);
-
-    begin
-
-      if i_started = '1' then
-        log    := i_log;
-        k      := i_k;
-        k_zero := i_pass;
-      else
-        log    := minimum(4, to_integer(in_cell_log));
-        k      := minimum(K_MAX, to_integer(in_per_cell));
-        k_zero := to_sl(in_per_cell = 0);
-      end if;
-
-      y_wide   := resize(in_y, 16);
-      a_record := not in_eof and not in_row_end;
-      -- With a cell row open, a later cell row than the last record's: a differing bit
-      -- of y above the cell's (raster order: never before). (A cell row is open only
-      -- after the frame's first beat: the registered mask holds.)
-      differs := to_sl(((y_wide xor resize(i_last_y, 16)) and not i_in_cell) /= 0);
-      at_last := to_sl((y_wide(7 downto 0) or not i_in_cell(7 downto 0)) = x"FF");
-      -- A row-end beat closes the open cell row at its last line (or past it).
-      closed  := i_open and in_row_end and (differs or at_last);
-      i_close <= closed;
-
-      -- Each flag a sum of few terms of differs and at_last (a beat is a record, a
-      -- row-end beat or an end of frame).
-      flags(F_PASS)   := k_zero;
-      flags(F_OUT)    := k_zero and not in_row_end;
-      flags(F_MARKER) := in_row_end;
-      flags(F_INSERT) := a_record and not k_zero;
-      flags(F_SWITCH) := a_record and i_open and differs;
-      flags(F_FIRST)  := a_record and (differs or not i_open);
-      flags(F_PUSH)   := not k_zero and (in_eof or (i_open and (differs or (in_row_end and at_last))));
-      flags(F_ENDS)   := not k_zero and (in_eof or (i_open and in_row_end and (differs or at_last)));
-
-      i_data <= pack(in_eof, in_x, in_y, in_score)
-                & std_logic_vector(to_unsigned(log, 3)) & std_logic_vector(to_unsigned(k, 4))
-                & flags;
-
-    end process decode;
-
-    input_side : process (clk) is
-    begin
-
-      if rising_edge(clk) then
-        if i_take = '1' then
-          i_started <= not in_eof;
-          if in_eof = '0' and in_row_end = '0' then
-            i_open   <= '1';
-            i_last_y <= in_y;
-          end if;
-          if in_eof = '1' or i_close = '1' then
-            i_open <= '0';
-          end if;
-          if i_started = '0' then
-            i_log     <= minimum(4, to_integer(in_cell_log));
-            i_in_cell <= cell_mask(minimum(4, to_integer(in_cell_log)));
-            i_k       <= minimum(K_MAX, to_integer(in_per_cell));
-            i_pass    <= to_sl(in_per_cell = 0);
-          end if;
-        end if;
-        if rst = '1' then
-          i_started <= '0';
-          i_open    <= '0';
-        end if;
-      end if;
-
-    end process input_side;
-
-    input_buffer : entity work.fastnms_skid_buffer
+    input_decode : entity work.fastnms_budget_decode
       generic map (
-        WIDTH => D_BITS
+        X_BITS     => X_BITS,
+        Y_BITS     => Y_BITS,
+        SCORE_BITS => SCORE_BITS,
+        K_MAX      => K_MAX
       )
       port map (
-        clk       => clk,
-        rst       => rst,
-        in_valid  => in_valid,
-        in_ready  => i_ready,
-        in_data   => i_data,
-        out_valid => s_valid,
-        out_ready => s_ready,
-        out_data  => s_data
+        clk         => clk,
+        rst         => rst,
+        in_valid    => in_valid,
+        in_ready    => in_ready,
+        in_x        => in_x,
+        in_y        => in_y,
+        in_score    => in_score,
+        in_eof      => in_eof,
+        in_row_end  => in_row_end,
+        in_cell_log => in_cell_log,
+        in_per_cell => in_per_cell,
+        out_valid   => s_valid,
+        out_ready   => s_ready,
+        out_x       => s_x,
+        out_y       => s_y,
+        out_score   => s_score,
+        out_eof     => s_eof,
+        out_log     => s_log,
+        out_k       => s_k,
+        out_flags   => s_flags,
+        out_cell    => s_cell_x
       );
 
-    in_ready <= i_ready;
+    s_beat <= pack(s_eof, s_x, s_y, s_score);
+    s_cell <= resize(s_cell_x, ADDR_BITS);
 
-    s_beat  <= s_data(D_BITS - 1 downto D_BITS - BEAT_BITS);
-    s_eof   <= s_beat(BEAT_BITS - 1);
-    s_x     <= unsigned(s_beat(BEAT_BITS - 2 downto Y_BITS + SCORE_BITS));
-    s_y     <= unsigned(s_beat(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
-    s_score <= unsigned(s_beat(SCORE_BITS - 1 downto 0));
-    s_log   <= to_integer(unsigned(s_data(F_BITS + 6 downto F_BITS + 4)));
-    s_k     <= to_integer(unsigned(s_data(F_BITS + 3 downto F_BITS)));
-    s_flags <= s_data(F_BITS - 1 downto 0);
-
-    -- The record's cell row, cell and place in the cell, from the registered beat.
+    -- The record's cell row and place in the cell, from the registered beat.
     locate : process (all) is
 
-      variable mask   : unsigned(15 downto 0);
+      variable mask   : unsigned(15 downto 0); -- the bits inside a cell of 16 << s_log
       variable y_wide : unsigned(15 downto 0);
       variable x_wide : unsigned(15 downto 0);
 
     begin
 
-      mask     := cell_mask(s_log);
+      mask     := shift_right(to_unsigned(255, 16), 4 - s_log);
       y_wide   := resize(s_y, 16);
       x_wide   := resize(s_x, 16);
       s_y0     <= resize(y_wide and not mask, Y_BITS);
-      s_cell   <= resize(shift_right(x_wide, s_log + 4), ADDR_BITS);
       s_offset <= std_logic_vector(y_wide(7 downto 0) and mask(7 downto 0))
                   & std_logic_vector(x_wide(7 downto 0) and mask(7 downto 0));
 
@@ -423,47 +316,27 @@ begin
     target <= 1 - fill_bank when s_flags(F_SWITCH) = '1' else
               fill_bank;
 
-    -- A row-end beat goes, closing its row needs a place in the queue; K = 0 passes
-    -- the beat once no job is left; a record needs its bank free (and, opening a cell
-    -- row, a place in the queue); an end of frame a place in the queue. While the
-    -- memory clears, both banks count as busy and the queue as full.
-    -- (Factored: a term of the beat's kind and the queue, a term of its bank, each of
-    -- few registers, so that take is two levels of logic.)
-    decide : process (all) is
+    -- What the beat waits for, by its class (fastnms_budget_pkg): nothing (F_FREE); no
+    -- job left and the output's ready (F_OUT, K = 0); a place in the queue (F_ENDS);
+    -- its bank free (F_FILL); both (F_OTHER, a record opening a row in the other bank).
+    -- While the memory clears, both banks count as busy and the queue as full.
+    -- (One flag per class, read by take only with its own registers: take is two
+    -- levels of logic, and shares no deeper term.)
+    go_other <= s_flags(F_OTHER) and job_room and not busy_other;
 
-      variable kind : std_logic; -- the queue and the output allow the beat
-      variable bank : std_logic; -- its bank allows it (a record needs its bank free)
-
-    begin
-
-      if s_flags(F_OUT) = '1' then
-        kind := jobs_idle and o_ready;
-      else
-        kind := not s_flags(F_PUSH) or job_room;
-      end if;
-
-      if s_flags(F_SWITCH) = '1' then
-        bank := not (s_flags(F_INSERT) and busy_other);
-      else
-        bank := not (s_flags(F_INSERT) and busy_fill);
-      end if;
-
-      -- (Without s_valid: the input buffer's output is ready or not, valid or not.)
-      take <= kind and (s_flags(F_OUT) or bank);
-      pass <= s_valid and s_flags(F_OUT) and jobs_idle;
-
-    end process decide;
+    -- (Without s_valid: the input buffer's output is ready or not, valid or not.)
+    take <= s_flags(F_FREE) or (s_flags(F_OUT) and jobs_idle and o_ready) or (s_flags(F_ENDS) and job_room)
+            or (s_flags(F_FILL) and not busy_fill) or go_other;
+    pass <= s_valid and s_flags(F_OUT) and jobs_idle;
 
     s_ready <= take;
 
     bank_free <= not busy_other when s_flags(F_SWITCH) = '1' else
                  not busy_fill;
 
-    -- take and F_INSERT, take and F_PUSH, written out: a beat with either flag does not
-    -- pass, and a record queues a job exactly when it opens a row in the other bank.
-    insert_now <= s_valid and s_flags(F_INSERT) and not busy_fill when s_flags(F_SWITCH) = '0' else
-                  s_valid and s_flags(F_INSERT) and not busy_other and job_room;
-    job_push   <= s_valid and s_flags(F_PUSH) and job_room and not (s_flags(F_INSERT) and busy_other);
+    -- take with a record, take with a job to queue, written out.
+    insert_now <= s_valid and ((s_flags(F_FILL) and not busy_fill) or go_other);
+    job_push   <= s_valid and ((s_flags(F_ENDS) and job_room) or go_other);
 
     -- The job a beat queues: a later cell row, or a row-end beat that closes the row,
     -- drains the bank filled so far; an end of frame drains the open row's bank, if a

@@ -31,6 +31,9 @@ MAX_PER_CELL = GENERICS.get("MAX_PER_CELL", 15)
 IDLE = float(os.environ.get("TB_IDLE", "0"))
 STALL = float(os.environ.get("TB_STALL", "0"))
 CLEAR_CLOCKS = (MAX_WIDTH + 15) // 16
+# From a row-end beat taken to its row's drain: the input's two buffers (the decode,
+# fastnms_budget_decode), the job queue and the drain's two settle clocks.
+DRAIN_PIPELINE = 2 + 1 + 2
 
 
 def expected(records: np.ndarray, cell_log: int, per_cell: int) -> list[tuple[int, int, int]]:
@@ -280,7 +283,7 @@ async def late_row_then_dense_row(dut):
 async def row_end_starts_the_drain(dut):
     """A cell row's records leave after its last line's row-end beat, not at the next
     record or the end of frame: within the drain (4 clocks per cell up to the last cell
-    written, plus one per record) and 4 clocks of pipeline, for each CELL
+    written, plus one per record) and DRAIN_PIPELINE clocks, for each CELL
     whose rows end before the frame's last line. Row-end beats at lines that do not end
     a cell row change nothing."""
     if MAX_HEIGHT < 32:
@@ -302,7 +305,7 @@ async def row_end_starts_the_drain(dut):
         await tb.source.send(beats[: first_row_end + 1])
         taken = sim_ns()
         cells = -(-MAX_WIDTH // cell)
-        bound = cells * 4 + len(want) + 4
+        bound = cells * 4 + len(want) + DRAIN_PIPELINE
         await ClockCycles(dut.clk, bound + 1)
         got = [(b["x"], b["y"], b["score"]) for b in tb.sink.beats[start:]]
         assert got == want, record_mismatch(got, want, f"CELL {cell}, after its row end")
