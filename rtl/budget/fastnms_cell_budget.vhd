@@ -20,8 +20,9 @@
 -- Row-end beats never leave the block.
 --
 -- How (docs/fastnms_cell_budget.md): each beat is decoded in two clocks
--- (fastnms_budget_decode: its frame's CELL and K, its kind as flags). The best K of each cell of the cell row
--- being filled are kept sorted in one memory word per cell (K entries of a
+-- (fastnms_budget_decode: its frame's CELL and K, its kind as flags). The best
+-- K of each cell of the cell row being filled are kept sorted in one memory
+-- word per cell (K entries of a
 -- valid bit, score and position in the cell, fastnms_budget_pkg), updated at
 -- one record per clock by fastnms_budget_insert (read, choose the base word,
 -- compare, insert, write back). Two banks: a complete cell row drains from one
