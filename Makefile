@@ -7,7 +7,7 @@ VENV    := .venv
 PY      := $(VENV)/bin/python
 STAMP   := $(VENV)/.installed
 JOBS    ?= 2
-PYTEST  := $(PY) -m pytest -n $(JOBS) -q
+PYTEST  := $(PY) -m pytest -n $(JOBS) --dist worksteal -q
 # The demo: a 1920x1080 scene made from scikit-image's rocket.jpg (flows/demo/scene.py),
 # or IMAGE=... for your own; both the OpenCV configuration and the paper's.
 DEMO     := build/demo
@@ -35,7 +35,7 @@ help:
 # ---- set-up ----------------------------------------------------------------
 setup: $(STAMP) check-ghdl check-verilator
 
-$(STAMP): pyproject.toml requirements.lock
+$(STAMP): pyproject.toml requirements.lock VERSION
 	@python3 -c 'import sys; sys.exit(sys.version_info < (3, 11))' || { \
 	  echo "make: Python >= 3.11 is needed, found $$(python3 --version 2>&1) (Debian 12 has it: apt-get install -y python3)"; exit 1; }
 	@python3 -c 'import ensurepip, venv' 2>/dev/null || { \
@@ -109,8 +109,11 @@ regmap: setup
 	$(PY) -m flows.regmap.regmap
 
 # Measured results (docs/results.md): each target rewrites its own section.
+# make synth ROWS=fastnms_fifo-1920,fastnms_orb*: those rows only (names of summary.json's
+# `config`, or glob patterns), the others kept from build/synth/cache or the last summary.
+ROWS ?=
 synth: setup
-	$(PY) -m flows.synth.summary --jobs $(JOBS)
+	$(PY) -m flows.synth.summary --jobs $(JOBS) $(if $(ROWS),--rows '$(ROWS)')
 
 bench: setup
 	$(PY) -m flows.bench.bench --jobs $(JOBS)
@@ -118,13 +121,13 @@ bench: setup
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
 	$(VENV)/bin/ruff format --check --quiet .
-	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd tb/vhdl/*.vhd flows/synth/probes/*.vhd 2>&1) || \
+	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd tb/vhdl/*.vhd tb/nms/vhdl/*.vhd 2>&1) || \
 	  { echo "$$out"; echo "make: vsg found style errors (fix with: $(VENV)/bin/vsg -c vsg.yaml --fix -f FILE)"; exit 1; }
 	@echo "lint: ruff and vsg clean"
 
 # ---- FuseSoC and Vivado ----------------------------------------------------
 fusesoc-sim: setup
-	$(VENV)/bin/fusesoc --cores-root . run --work-root build/fusesoc/sim --target sim ::fastnms:0.1.0
+	$(VENV)/bin/fusesoc --cores-root . run --work-root build/fusesoc/sim --target sim ::fastnms:0.2.0
 
 # Vivado is not installed by `make setup`: it must be on PATH (settings64.sh).
 VIVADO   ?= vivado

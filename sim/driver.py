@@ -3,7 +3,7 @@ cocotbext-axi (AxiStreamSource for the video, AxiStreamSink for the corner
 records and the score video, AxiLiteMaster for the registers), counts clocks,
 and decodes the corner records.
 
-Used by the testbench of the top (tb/top/axi_tb.py), which adds the checks;
+Used by the testbenches of the top (tb/top/), which adds the checks;
 the cocotb engine (sim/frame_tb.py) takes its clock period and video packets.
 It runs inside the simulator and knows nothing of the tests.
 """
@@ -33,6 +33,27 @@ from .axi_protocol import AxiProtocolChecker
 
 PERIOD_NS = 10
 Record = tuple[int, int, int]
+
+
+def frame_writes(
+    width: int,
+    height: int,
+    threshold: int,
+    budget: tuple[int, int] | None = None,
+    min_area: int | None = None,
+) -> list[tuple[int, int]]:
+    """The register writes of one frame as (offset, value): WIDTH, HEIGHT, then BUDGET =
+    (cell, per_cell) and MIN_AREA when given, THRESHOLD last: the one order both engines
+    use (the fast engine's: sim/verilator_harness.cpp)."""
+    writes = [(regs.WIDTH, width), (regs.HEIGHT, height)]
+    if budget is not None:
+        cell, per_cell = budget
+        value = cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
+        writes.append((regs.BUDGET, value))
+    if min_area is not None:
+        writes.append((regs.MIN_AREA, min_area << regs.MIN_AREA_VALUE.lsb))
+    writes.append((regs.THRESHOLD, threshold))
+    return writes
 
 
 def record_words(frame: AxiStreamFrame) -> list[int]:
@@ -217,18 +238,9 @@ class AxiTop:
         budget: tuple[int, int] | None = None,
         min_area: int | None = None,
     ) -> None:
-        """WIDTH, HEIGHT, THRESHOLD and, when given, BUDGET = (cell, per_cell) and
-        MIN_AREA = min_area."""
-        await self.write(regs.WIDTH, width)
-        await self.write(regs.HEIGHT, height)
-        await self.write(regs.THRESHOLD, threshold)
-        if budget is not None:
-            cell, per_cell = budget
-            await self.write(
-                regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
-            )
-        if min_area is not None:
-            await self.write(regs.MIN_AREA, min_area << regs.MIN_AREA_VALUE.lsb)
+        """The frame's registers (`frame_writes`)."""
+        for offset, value in frame_writes(width, height, threshold, budget, min_area):
+            await self.write(offset, value)
 
     async def soft_reset(self) -> None:
         """CMD.SOFT_RESET with its KEY (0x5A in bits 31:24)."""

@@ -30,9 +30,8 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, Event, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiStreamBus, AxiStreamSource
-from fastnms.sim import regs
 from fastnms.sim.axi_protocol import AxiProtocolChecker
-from fastnms.sim.driver import PERIOD_NS, video_lines
+from fastnms.sim.driver import PERIOD_NS, frame_writes, video_lines
 from fastnms.sim.timing import Pattern, Timing
 
 
@@ -127,17 +126,10 @@ async def configure(
     budget: tuple[int, int] | None,
     min_area: int | None = None,
 ) -> None:
-    """The frame's registers, in the fast engine's order (sim/verilator_harness.cpp)."""
-    await write(axil, regs.WIDTH, img.shape[1])
-    await write(axil, regs.HEIGHT, img.shape[0])
-    if budget is not None:
-        cell, per_cell = budget
-        await write(
-            axil, regs.BUDGET, cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
-        )
-    if min_area is not None:
-        await write(axil, regs.MIN_AREA, min_area << regs.MIN_AREA_VALUE.lsb)
-    await write(axil, regs.THRESHOLD, threshold)
+    """The frame's registers (fastnms.sim.driver.frame_writes)."""
+    height, width = img.shape[:2]
+    for offset, value in frame_writes(width, height, threshold, budget, min_area):
+        await write(axil, offset, value)
 
 
 @cocotb.test()

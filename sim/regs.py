@@ -34,7 +34,7 @@ class Register(NamedTuple):
 
 ADDR_WIDTH = 12
 DATA_WIDTH = 32
-MAP_VERSION = (0, 6, 0)
+MAP_VERSION = (0, 2, 0)
 
 
 # ID: Identification: the constant 0x46415354 ("FAST" in ASCII).
@@ -44,7 +44,7 @@ ID_MAGIC = Field(0, 32, "ro", 0x46415354)
 # VERSION: Version of the core and of this register map.
 VERSION = 0x04
 VERSION_PATCH = Field(0, 8, "ro", 0)
-VERSION_MINOR = Field(8, 8, "ro", 6)
+VERSION_MINOR = Field(8, 8, "ro", 2)
 VERSION_MAJOR = Field(16, 8, "ro", 0)
 
 # CTRL: Control. (Bit 1 is reserved: the soft reset moved to CMD.)

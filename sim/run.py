@@ -276,12 +276,12 @@ def _run_verilator(
 
 def _run_cocotb(frames, generics, timing, progress, budget, min_area) -> SimResult:
     name = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
-    build_dir = BUILD / f"fastnms_axi-cli-{name}"
-    build_dir.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=build_dir) as tmp:
+    run_dir = BUILD / f"fastnms_axi-cli-{name}"
+    run_dir.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=run_dir) as tmp:
         work = Path(tmp)
         np.savez(work / "frames.npz", *[np.ascontiguousarray(img, np.uint8) for img, _ in frames])
-        out, progress_file, log = work / "result.json", work / "progress", build_dir / "sim.log"
+        out, progress_file, log = work / "result.json", work / "progress", run_dir / "sim.log"
         start = time.perf_counter()
         failure: list[BaseException] = []
 
@@ -291,7 +291,6 @@ def _run_cocotb(frames, generics, timing, progress, budget, min_area) -> SimResu
                     "fastnms_axi",
                     "fastnms.sim.frame_tb",
                     generics,
-                    build_dir=build_dir,
                     test_dir=work,
                     # The line buffers start undefined (as BRAMs do not in
                     # hardware): numeric_std's warnings about them are noise.

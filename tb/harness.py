@@ -1,13 +1,16 @@
 """Runs cocotb testbenches under GHDL from pytest.
 
-Each (toplevel, generics) pair gets its own build directory under build/sim, so
-generic sets never share a compiled library and pytest-xdist workers can run in
-parallel. Seeds: FASTNMS_SEED sets the seed of every test; otherwise each test
-uses a fixed seed derived from its name, so a run is reproducible. The seed is
-printed (pytest shows it on failure) and logged by the testbench. The
-simulator's output (or the build's, when the build fails) goes to sim.log in the
-test's directory, as a long run's log can be large; pytest shows its path and
-last 200 lines when the test fails.
+The RTL is analysed once into a library that every top level and generic set
+shares (fastnms.sim.ghdl); each test gets its own directory under
+build/sim/<toplevel>-<generics>/ for its results and log. Each cocotb test can be
+its own pytest item (`cocotb_tests` lists a module's tests for parametrize).
+
+Seeds: FASTNMS_SEED sets the seed of every test; otherwise each test uses a
+fixed seed derived from its pytest node id, so a run is reproducible. The seed is
+printed (pytest shows it on failure) and logged by the testbench. The simulator's
+output (or the analysis's, when it fails) goes to sim.log in the test's
+directory, as a long run's log can be large; pytest shows its path and last 200
+lines when the test fails.
 """
 
 from __future__ import annotations
@@ -31,6 +34,23 @@ def test_seed(name: str) -> int:
     return zlib.crc32(name.encode()) & 0x7FFFFFFF
 
 
+_COCOTB_TEST = re.compile(r"^@cocotb\.test\b[^\n]*\n(?:@[^\n]*\n)*async def (\w+)", re.MULTILINE)
+
+
+def _module_file(module: str) -> Path:
+    found = sorted(TB.rglob(f"{module}.py"))
+    assert len(found) == 1, f"{len(found)} testbench modules {module}.py under tb/"
+    return found[0]
+
+
+def cocotb_tests(module: str) -> list[str]:
+    """The cocotb tests a testbench module defines, in file order: the values
+    `testcase` takes, so that each becomes a pytest item of its own."""
+    names = _COCOTB_TEST.findall(_module_file(module).read_text())
+    assert names, f"{module}.py defines no cocotb test"
+    return names
+
+
 def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")
 
@@ -49,17 +69,14 @@ def run_cocotb(
 
     `module` names a Python module in tb/ or one of its folders (`axi_tb`); `env` reaches the
     testbench as environment variables; `extra_sources` are compiled after rtl/ (a synthesis
-    probe, for one). Fails unless at least one test ran and none failed.
+    wrapper entity, for one). Fails unless at least one test ran and none failed.
     """
     seed = test_seed(name)
     print(f"seed={seed} (set FASTNMS_SEED={seed} to repeat)")
     key = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
-    build_dir = BUILD / f"{toplevel}-{key}"
-    test_dir = build_dir / _slug(name)
+    test_dir = BUILD / f"{toplevel}-{key}" / _slug(name)
 
-    found = sorted(TB.rglob(f"{module}.py"))
-    assert len(found) == 1, f"{len(found)} testbench modules {module}.py under tb/"
-    dotted = ".".join(found[0].relative_to(REPO).with_suffix("").parts)
+    dotted = ".".join(_module_file(module).relative_to(REPO).with_suffix("").parts)
 
     log = test_dir / "sim.log"
     try:
@@ -67,12 +84,15 @@ def run_cocotb(
             toplevel,
             dotted,
             generics,
-            build_dir=build_dir,
             test_dir=test_dir,
             # GHDL run-time options go after the top-level name, where plusargs go.
             # An RTL assertion of severity error (a broken input contract)
-            # stops the simulation, so the test fails.
-            plusargs=["--ieee-asserts=disable-at-0", "--assert-level=error"],
+            # stops the simulation, so the test fails. numeric_std's warnings are
+            # off: pipeline registers hold U until the first pixel reaches them, and
+            # a top waiting for its first frame printed hundreds per clock (300 MB
+            # of log, most of the test's time); a wrong value is caught by the
+            # scoreboards, which compare every output with the golden model.
+            plusargs=["--ieee-asserts=disable", "--assert-level=error"],
             extra_env={"TB_GENERICS": repr(generics), **(env or {})},
             seed=seed,
             testcase=testcase,

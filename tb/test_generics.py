@@ -83,6 +83,7 @@ MORE = [
     ("fastnms_window", {"PPC": 3}, "PPC must be 1, 2 or 4"),
     ("fastnms_window", {"PPC": 4, "MAX_WIDTH": 30}, "MAX_WIDTH must be a multiple of PPC"),
     ("fastnms_nms_serializer", {"DEPTH": 2}, "DEPTH must be at least 4"),
+    ("fastnms_fifo", {"ALMOST_FULL_LEVEL": 513}, "ALMOST_FULL_LEVEL must be within 1 .. DEPTH"),
     ("fastnms_core", {"PPC": 4, "NMS": "region4"}, 'NMS "region4" takes one pixel per clock'),
     ("fastnms_core", {"PPC": 3}, "PPC must be 1, 2 or 4"),
     ("fastnms_core", {"DESCRIPTOR": "sift"}, 'DESCRIPTOR must be "none" or "orb"'),

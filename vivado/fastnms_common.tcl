@@ -9,12 +9,12 @@ namespace eval fastnms {
     variable script_dir [file normalize [file dirname [info script]]]
     variable repo       [file dirname $script_dir]
 
-    # The packaged IP: vendor:library:name:version. The version follows
-    # pyproject.toml's major.minor (checked by flows/vivado_check/test_vivado_tcl.py).
+    # The packaged IP: vendor:library:name:version. The version is the
+    # major.minor of the file VERSION (checked by flows/docs_check/test_version.py).
     variable vendor  fastnms
     variable library vision
     variable name    fastnms_axi
-    variable version 0.1
+    variable version 0.2
     variable top     fastnms_axi
 
     # ZedBoard and ZC702 both carry this Zynq-7020.

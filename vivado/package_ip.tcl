@@ -7,7 +7,7 @@
 # Output (never committed: build/ is in .gitignore):
 #   build/vivado/ip/                      the IP repository: component.xml,
 #                                         src/ (the RTL, copied), xgui/
-#   build/vivado/fastnms_vision_fastnms_axi_0.1.zip   the same as an archive
+#   build/vivado/fastnms_vision_fastnms_axi_0.2.zip   the same as an archive
 #   build/vivado/package_ip_project/      the throw-away packaging project
 #   build/vivado/ip_wrapper/fastnms_axi_ip.vhd   the generated VHDL-93 top level
 # With --out DIR the IP goes to DIR and the others beside it.
@@ -17,7 +17,7 @@
 # packager reads the top-level file as VHDL-93 (UG1118, "Top-Level HDL
 # Requirements"), the RTL is VHDL-2008. Its generics, ports and interface
 # attributes are fastnms_axi's, word for word; the IP is still named
-# fastnms_axi (VLNV fastnms:vision:fastnms_axi:0.1).
+# fastnms_axi (VLNV fastnms:vision:fastnms_axi:0.2).
 #
 # Written for Vivado 2020.2 or later; not run where this project is
 # developed (no Vivado there). flows/vivado_check/test_vivado_tcl.py runs it under plain Tcl

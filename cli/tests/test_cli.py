@@ -13,6 +13,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 import pytest
+from fastnms import golden_command, outputs, overlay
 from fastnms import main as cli
 from fastnms.golden.budget import cell_budget
 from fastnms.golden.image import ImageError, load_grey
@@ -90,8 +91,8 @@ def test_golden_writes_csv_and_png(grey_image, tmp_path: Path, capsys, score: st
     strongest = expected[np.argsort(expected[:, 2], kind="stable")[-1]]
     x, y = int(strongest[0]), int(strongest[1])
     if 3 <= x <= 86 and 3 <= y <= 66:
-        assert png[y - 3, x - 3].tolist() == list(cli.HIGH_BGR)
-        assert png[y + 3, x + 3].tolist() == list(cli.HIGH_BGR)
+        assert png[y - 3, x - 3].tolist() == list(overlay.HIGH_BGR)
+        assert png[y + 3, x + 3].tolist() == list(overlay.HIGH_BGR)
     untouched = np.ones(img.shape, bool)
     for cx, cy, *_ in expected.tolist():
         untouched[max(cy - 3, 0) : cy + 4, max(cx - 3, 0) : cx + 4] = False
@@ -110,12 +111,12 @@ def test_defaults_and_no_outputs(grey_image, capsys):
 
 
 def test_score_colours_span_dark_red_to_yellow():
-    colours = cli.score_colours(np.array([30, 40, 50]))
-    assert colours[0].tolist() == list(cli.LOW_BGR)
-    assert colours[-1].tolist() == list(cli.HIGH_BGR)
+    colours = overlay.score_colours(np.array([30, 40, 50]))
+    assert colours[0].tolist() == list(overlay.LOW_BGR)
+    assert colours[-1].tolist() == list(overlay.HIGH_BGR)
     assert 0 < colours[1, 1] < 255  # in between
-    assert cli.score_colours(np.array([7, 7])).tolist() == [list(cli.HIGH_BGR)] * 2
-    assert cli.score_colours(np.array([], dtype=np.int64)).shape == (0, 3)
+    assert overlay.score_colours(np.array([7, 7])).tolist() == [list(overlay.HIGH_BGR)] * 2
+    assert overlay.score_colours(np.array([], dtype=np.int64)).shape == (0, 3)
 
 
 def test_colour_input_is_converted_like_opencv(tmp_path: Path, rng, capsys):
@@ -230,7 +231,7 @@ def test_unwritable_outputs(grey_image, tmp_path: Path, capsys, monkeypatch, cas
     def no_work(*args, **kwargs):
         raise AssertionError("outputs must be checked before any detection work")
 
-    monkeypatch.setattr(cli, "detect", no_work)
+    monkeypatch.setattr(golden_command, "detect", no_work)
     argv = ["golden", str(path), "--csv", str(csv_path), "--png", str(png_path)]
     assert_usage_error(*run(argv, capsys))
     assert sorted(os.listdir(out)) == before
@@ -243,7 +244,7 @@ def test_png_failure_removes_csv(grey_image, tmp_path: Path, capsys, monkeypatch
     def broken_png(canvas):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(cli, "png_bytes", broken_png)
+    monkeypatch.setattr(outputs, "png_bytes", broken_png)
     argv = ["golden", str(path), "--csv", str(tmp_path / "c.csv"), "--png", str(tmp_path / "p.png")]
     status, out, err = run(argv, capsys)
     assert_usage_error(status, out, err)
@@ -260,7 +261,7 @@ def test_failed_move_takes_back_earlier_outputs(grey_image, tmp_path: Path, caps
             raise PermissionError(13, "Permission denied", str(dst))
         real_replace(src, dst)
 
-    monkeypatch.setattr(cli.os, "replace", replace)
+    monkeypatch.setattr(outputs.os, "replace", replace)
     argv = ["golden", str(path), "--csv", str(tmp_path / "c.csv"), "--png", str(tmp_path / "p.png")]
     assert_usage_error(*run(argv, capsys))
     assert sorted(os.listdir(tmp_path)) == ["in"]
@@ -358,10 +359,10 @@ def test_golden_orb_writes_csv_and_png(textured_image, tmp_path: Path, capsys, n
     x, y, _ = want.records[strongest].tolist()
     t = np.radians(float(want.angles[strongest]))
     tip = (
-        round(x + cli.ORIENTATION_LENGTH * np.cos(t)),
-        round(y + cli.ORIENTATION_LENGTH * np.sin(t)),
+        round(x + overlay.ORIENTATION_LENGTH * np.cos(t)),
+        round(y + overlay.ORIENTATION_LENGTH * np.sin(t)),
     )
-    assert png[tip[1], tip[0]].tolist() == list(cli.HIGH_BGR)  # the line's end, drawn last
+    assert png[tip[1], tip[0]].tolist() == list(overlay.HIGH_BGR)  # the line's end, drawn last
 
 
 def test_golden_orb_on_a_small_image_has_a_header_only(textured_image, tmp_path: Path, capsys):

@@ -11,6 +11,7 @@ import cv2
 import numpy as np
 import pytest
 from fastnms import main as cli
+from fastnms import rtl_run
 from fastnms.golden.budget import cell_budget
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import detect
@@ -277,7 +278,7 @@ def test_compare_identical_and_different(photo: Path, capsys, monkeypatch):
         result.frames[0].records[0, 2] += 1
         return result
 
-    monkeypatch.setattr(cli, "run_rtl", one_corner_off)
+    monkeypatch.setattr(rtl_run, "run_rtl", one_corner_off)
     assert cli.main(["compare", str(photo), "-t", "15"]) == 1
     out = capsys.readouterr().out
     assert "DIFFERENT" in out and "rtl only" in out and "reference only" in out
@@ -352,7 +353,7 @@ def test_min_area_usage_errors(photo: Path, tmp_path: Path, capsys, monkeypatch,
     def no_engine(*args, **kwargs):
         raise AssertionError("the engine was started")
 
-    monkeypatch.setattr(cli, "run_rtl", no_engine)
+    monkeypatch.setattr(rtl_run, "run_rtl", no_engine)
     out_csv = tmp_path / "c.csv"
     status, out, err = run([command, str(photo), *bad, "--csv", str(out_csv)], capsys)
     assert status == 2 and out == "" and err.startswith("fastnms: error: ")
@@ -395,7 +396,7 @@ def golden_engine(monkeypatch) -> list[dict]:
         results = sim._frame_results(frames, raw)
         return sim.SimResult(results, 1000, 0, 0.1, kwargs.get("engine", "verilator"))
 
-    monkeypatch.setattr(cli, "run_rtl", fake_run_rtl)
+    monkeypatch.setattr(rtl_run, "run_rtl", fake_run_rtl)
     return calls
 
 
@@ -452,26 +453,26 @@ def test_compare_min_area_checks_the_areas(photo: Path, capsys, golden_engine, m
     assert "rtl vs golden model: identical" in out and "with their areas" in out
     assert golden_engine[-1]["min_area"] == 2
 
-    fake = cli.run_rtl
+    fake = rtl_run.run_rtl
 
     def one_area_off(*args, **kwargs):
         result = fake(*args, **kwargs)
         result.frames[0].areas[0] += 1
         return result
 
-    monkeypatch.setattr(cli, "run_rtl", one_area_off)
+    monkeypatch.setattr(rtl_run, "run_rtl", one_area_off)
     assert cli.main(argv) == 1
     out = capsys.readouterr().out
     assert "DIFFERENT" in out and "rtl only" in out and "reference only" in out
     # The regions the golden model drops are a difference too.
-    monkeypatch.setattr(cli, "run_rtl", fake)
+    monkeypatch.setattr(rtl_run, "run_rtl", fake)
     assert cli.main([*argv[:-1], "3"]) == 0
     golden_engine.clear()
 
     def unfiltered(frames, score, nms, **kwargs):
         return fake(frames, score, nms, **{**kwargs, "min_area": None})
 
-    monkeypatch.setattr(cli, "run_rtl", unfiltered)
+    monkeypatch.setattr(rtl_run, "run_rtl", unfiltered)
     capsys.readouterr()
     assert cli.main(argv) == 1
     out = capsys.readouterr().out

@@ -1,5 +1,6 @@
 """Time detect() on a 1920x1080 frame for every score and NMS mode, and OpenCV's FAST on the
-same frame. Run as `python -m flows.bench.software`; prints one line per case (best of 3)."""
+same frame. Run as `python -m flows.bench.software`; prints one line per case (best of 3).
+`make bench` times its first frame with software_times."""
 
 from __future__ import annotations
 
@@ -12,6 +13,9 @@ from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES, detect
 
 WIDTH, HEIGHT = 1920, 1080
 REPEATS = 3
+# `make bench`'s software timings keep the configurations they had when the bench
+# simulated only three.
+SOFTWARE_CONFIGS = [("opencv", "3x3"), ("sad", "region4"), ("opencv", "region8")]
 
 
 def bench_frame() -> tuple[np.ndarray, str]:
@@ -38,6 +42,37 @@ def best_ms(fn: Callable[[], object]) -> tuple[float, object]:
         result = fn()
         best = min(best, time.perf_counter() - start)
     return best * 1e3, result
+
+
+def software_times(frame: np.ndarray, threshold: int) -> list[dict]:
+    """Best of 3 wall times of the golden model (the bench's configurations)
+    and of cv2.FastFeatureDetector on one frame, for `make bench`."""
+    rows = []
+    for score, nms in SOFTWARE_CONFIGS:
+        ms, rec = best_ms(lambda s=score, n=nms: detect(frame, threshold, s, n))
+        rows.append(
+            {
+                "what": f"golden {score} + {nms}",
+                "ms": ms,
+                "corners": len(rec),
+                "best_of": REPEATS,
+            }
+        )
+    for nonmax in (True, False):
+        det = cv2.FastFeatureDetector_create(
+            threshold=threshold, nonmaxSuppression=nonmax, type=cv2.FAST_FEATURE_DETECTOR_TYPE_9_16
+        )
+        ms, kps = best_ms(lambda d=det: d.detect(frame))
+        label = "opencv + 3x3" if nonmax else "opencv + none"
+        rows.append(
+            {
+                "what": f"cv2.FastFeatureDetector {label}",
+                "ms": ms,
+                "corners": len(kps),
+                "best_of": REPEATS,
+            }
+        )
+    return rows
 
 
 def main() -> None:

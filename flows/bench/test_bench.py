@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from fastnms.testing import images as testimages
 
-from flows.bench import bench
+from flows.bench import budget, engine, frame_runs
 
 W, H = 64, 32
 
@@ -21,7 +21,8 @@ def frames() -> list[np.ndarray]:
 
 
 def simulate(frames: list[np.ndarray], nms: str = "3x3") -> dict:
-    return bench.simulate("opencv", nms, frames, 10, bench.bench_generics("opencv", nms, W, H))
+    generics = engine.bench_generics("opencv", nms, W, H)
+    return frame_runs.simulate("opencv", nms, frames, 10, generics)
 
 
 def test_bench_simulates_back_to_back_frames(frames):
@@ -44,13 +45,13 @@ def test_bench_simulates_back_to_back_frames(frames):
 
 
 def test_bench_fails_on_a_golden_difference(frames, monkeypatch):
-    real = bench.detect
+    real = frame_runs.detect
 
     def one_corner_short(img, threshold, score, nms):
         return real(img, threshold, score, nms)[:-1]
 
-    monkeypatch.setattr(bench, "detect", one_corner_short)
-    with pytest.raises(bench.BenchError, match="frame 0: the RTL gave"):
+    monkeypatch.setattr(frame_runs, "detect", one_corner_short)
+    with pytest.raises(engine.BenchError, match="frame 0: the RTL gave"):
         simulate(frames)
 
 
@@ -60,8 +61,8 @@ def test_budget_bench(frames):
     cells x K keypoints per frame, no input stall, and the report's table."""
     from flows.report.report import budget_lines
 
-    result = bench.budget_bench(frames, 10, W, H, True)
-    assert [(r["cell"], r["per_cell"]) for r in result["rows"]] == bench.BUDGETS
+    result = budget.budget_bench(frames, 10, W, H, True)
+    assert [(r["cell"], r["per_cell"]) for r in result["rows"]] == budget.BUDGETS
     for r in result["rows"]:
         assert r["checked"] and r["input_stalls"] == 0
         assert all(0 < c <= r["cells"] * r["per_cell"] for c in r["corners"]), r

@@ -69,34 +69,35 @@ def golden_frame(img: np.ndarray, cell: int, per_cell: int):
 def test_check_orb_stops_on_any_difference(orb_frames):
     """The bench's ORB check: equal records pass; one descriptor bit, one angle bit or
     one keypoint less stops the bench (without simulating)."""
-    from flows.bench import bench
+    from flows.bench.engine import BenchError
+    from flows.bench.orb_rtl import check_orb
 
     img = orb_frames[0]
     frame = golden_frame(img, 16, 4)
     assert len(frame.records) > 0
-    bench.check_orb("same", img, frame, 10, 16, 4)
+    check_orb("same", img, frame, 10, 16, 4)
     bad = golden_frame(img, 16, 4)
     bad.descriptors[0, 31] ^= 0x80
-    with pytest.raises(bench.BenchError, match="angle or descriptor of 1 of"):
-        bench.check_orb("one bit", img, bad, 10, 16, 4)
+    with pytest.raises(BenchError, match="angle or descriptor of 1 of"):
+        check_orb("one bit", img, bad, 10, 16, 4)
     bad = golden_frame(img, 16, 4)
     bad.angle_bits[-1] ^= 1
-    with pytest.raises(bench.BenchError, match="angle bits"):
-        bench.check_orb("one angle", img, bad, 10, 16, 4)
+    with pytest.raises(BenchError, match="angle bits"):
+        check_orb("one angle", img, bad, 10, 16, 4)
     bad = golden_frame(img, 16, 4)
     bad.records = bad.records[:-1]
-    with pytest.raises(bench.BenchError, match="keypoints, the golden model"):
-        bench.check_orb("one short", img, bad, 10, 16, 4)
+    with pytest.raises(BenchError, match="keypoints, the golden model"):
+        check_orb("one short", img, bad, 10, 16, 4)
 
 
 @pytest.mark.slow  # builds the ORB top for 128x96 on the fast engine (a minute or more)
 def test_orb_rtl_bench(orb_frames):
     """The ORB rows of `make bench` on a small build: two frames back to back, every
     record equal to the golden's (checked inside), the report's table."""
-    from flows.bench import bench
+    from flows.bench.orb_rtl import orb_rtl_bench
     from flows.report.report import orb_rtl_lines
 
-    result = bench.orb_rtl_bench(orb_frames, 10, W, H, True, budgets=[(16, 4)])
+    result = orb_rtl_bench(orb_frames, 10, W, H, True, budgets=[(16, 4)])
     assert result["generics"]["DESCRIPTOR"] == "orb"
     (row,) = result["rows"]
     assert row["checked"] and len(row["corners"]) == 2

@@ -25,7 +25,8 @@ from fastnms.sim.sources import REPO, compile_order, order_problems, tracked_rtl
 from flows.vivado_check import tclcheck
 
 CORE = REPO / "fastnms.core"
-VLNV = "::fastnms:0.1.0"
+VERSION = (REPO / "VERSION").read_text().strip()
+VLNV = f"::fastnms:{VERSION}"
 WORK = REPO / "build" / "fusesoc"
 FUSESOC = Path(sys.executable).with_name("fusesoc")
 VECTORS = REPO / "tb" / "vhdl" / "fastnms_smoke_vectors_pkg.vhd"
@@ -166,11 +167,11 @@ def test_synth_target_sets_up_a_vivado_project() -> None:
     work = WORK / "synth"
     proc = run_fusesoc(REPO, work, "--setup", "--target", "synth")
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    project = work / "fastnms_0.1.0.tcl"
+    project = work / f"fastnms_{VERSION}.tcl"
     text = project.read_text()
     assert "set_property part xc7z020clg484-1 [current_project]" in text
     assert "set_property top fastnms_axi [current_fileset]" in text
-    read = re.findall(r"read_vhdl -vhdl2008 \{src/fastnms_0\.1\.0/(\S+)\}", text)
+    read = re.findall(rf"read_vhdl -vhdl2008 \{{src/fastnms_{re.escape(VERSION)}/(\S+)\}}", text)
     assert read == core()["filesets"]["rtl"]["files"]
     if tclcheck.backend() is not None:
         assert not tclcheck.incomplete_commands(project)

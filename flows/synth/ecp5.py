@@ -17,9 +17,6 @@ of the register-to-register paths (registers and block RAMs) inside the
 design. This is Lattice ECP5, not the Xilinx 7-series of the LUT figures.
 
     python -m flows.synth.ecp5 ENTITY [GENERIC=VALUE ...]    (ECP5_DEVICE=85k for the 85F)
-
-ENTITY may also be a probe of flows/synth/probes (compiled with fastnms_pkg alone), e.g.
-`python -m flows.synth.ecp5 key_deferred SCORE_BITS=12 POS_BITS=22 GATED_FLAGS=true`.
 """
 
 from __future__ import annotations
@@ -235,11 +232,8 @@ if __name__ == "__main__":
     gens = dict(a.split("=", 1) for a in args if "=" in a)
     from flows.synth.axi_top import synthesizable_top
 
-    if (synth.PROBES / f"{name}.vhd").exists():
-        path, _ = synth.ghdl_synth(name, gens, sources=synth.probe_sources(name))
-    else:
-        with synthesizable_top():  # fastnms_axi without its Vivado attributes
-            path, _ = synth.ghdl_synth(name, gens)
+    with synthesizable_top():  # fastnms_axi without its Vivado attributes
+        path, _ = synth.ghdl_synth(name, gens)
     design, cells = yosys_ecp5(path, name)
     result = nextpnr_ecp5(design, device=os.environ.get("ECP5_DEVICE", DEFAULT_DEVICE))
     print(f"{name}: {cells}")

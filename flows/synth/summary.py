@@ -18,11 +18,20 @@ two blocks the issue's "ORB + budget" target adds up: fastnms_orb_stage with
 the generics fastnms_core gives it there and fastnms_cell_budget. Their place
 and route is on the LFE5U-85F (ORB_ECP5_DEVICE); a design that does not fit
 is recorded as such, and nextpnr is stopped after --ecp5-timeout seconds.
+
+Each row's figures are cached under build/synth/cache, keyed by the row's inputs
+(the RTL files it elaborates, its generics, the place and route options, the tool
+versions, the flow's Python files: flows/synth/cache.py); a cached row is not run
+again, and each row's line says whether it came from the cache (run.json lists
+them). `--rows` (`make synth ROWS=...`) runs only the named rows, e.g.
+`fastnms_fifo-1920,fastnms_orb*` (the names of summary.json's `config`, or glob
+patterns); the others are taken from the cache, else from the previous summary.
 """
 
 from __future__ import annotations
 
 import argparse
+import fnmatch
 import json
 import os
 import shutil
@@ -36,7 +45,7 @@ from fastnms.sim.run import generics_for
 from fastnms.sim.sources import REPO
 
 from flows.report import report
-from flows.synth import ecp5, synth
+from flows.synth import cache, ecp5, synth
 from flows.synth.axi_top import levels_outside, synthesizable_top
 
 WIDTH, HEIGHT = 1920, 1080
@@ -236,6 +245,53 @@ def orb_entries(width: int, height: int) -> list[Entry]:
     ]
 
 
+class UnknownRows(ValueError):
+    """Row names or patterns (`--rows`) that match no row of the run."""
+
+
+def all_rows(
+    configs: list[tuple[str, str]],
+    width: int,
+    height: int,
+    entities: list[str],
+    ppc_configs: tuple[tuple[str, str], ...] | list[tuple[str, str]],
+) -> list[Entry]:
+    """Every row of a run, in the summary's order."""
+    rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
+    if "blocks" in entities:
+        rows += block_entries(width, height)
+    if "orb" in entities:
+        rows += orb_entries(width, height)
+    return rows + [e for score, nms in ppc_configs for e in ppc_entries(score, nms)]
+
+
+def select_rows(rows: list[Entry], patterns: list[str]) -> list[Entry]:
+    """The rows whose name (`config`) matches one of `patterns`: names, or glob
+    patterns such as `fastnms_orb*`. UnknownRows when a pattern matches none."""
+    names = [r.config for r in rows]
+    unknown = [p for p in patterns if not any(fnmatch.fnmatchcase(n, p) for n in names)]
+    if unknown:
+        raise UnknownRows(
+            f"unknown row{'s' * (len(unknown) > 1)} {', '.join(unknown)}; "
+            f"valid rows: {', '.join(names)}"
+        )
+    return [r for r in rows if any(fnmatch.fnmatchcase(r.config, p) for p in patterns)]
+
+
+# The fields of a summary row that are not figures.
+ROW_FIELDS = ("config", "entity", "score", "nms", "generics", "ppc", "ppc_table", "orb_table")
+
+
+def _previous_figures(row: Entry, previous: list[dict] | None) -> dict | None:
+    """The figures of `row` in a previous summary (same name, entity and generics)."""
+    generics = json.loads(json.dumps(row.generics))
+    for old in previous or []:
+        same = (old.get("config"), old.get("entity")) == (row.config, row.entity)
+        if same and old.get("generics") == generics:
+            return {k: v for k, v in old.items() if k not in ROW_FIELDS}
+    return None
+
+
 def _key_dir(root: Path, entity: str, generics: dict[str, object]) -> Path:
     key = "-".join(f"{k}{v}" for k, v in sorted(generics.items())) or "default"
     return root / f"{entity}-{key}"
@@ -294,6 +350,37 @@ def ecp5_figures(
     return figures
 
 
+def _row_status(
+    every: list[Entry],
+    unique: dict[tuple, Entry],
+    parts,
+    results: dict[tuple, dict[str, dict]],
+    todo: dict[tuple, list[str]],
+    previous: list[dict] | None,
+) -> dict[str, tuple[str, str]]:
+    """Row name -> where its figures come from ("cached", "run", "partly cached",
+    "previous summary" or "missing") and the words its log line gives."""
+    out = {}
+    for row in every:
+        wanted = list(parts(unique[row.key]))
+        running = todo.get(row.key, [])
+        cached = [p for p in wanted if p in results[row.key]]
+        names = {"xc7": "xc7", "ecp5": "ECP5"}
+        if not running:
+            if len(cached) == len(wanted):
+                out[row.config] = ("cached", "cached")
+            elif _previous_figures(row, previous) is not None:
+                out[row.config] = ("previous summary", "not selected, from the previous summary")
+            else:
+                out[row.config] = ("missing", "not selected, not cached: left out")
+        elif cached:
+            text = f"{', '.join(names[p] for p in cached)} cached, to run: "
+            out[row.config] = ("partly cached", text + ", ".join(names[p] for p in running))
+        else:
+            out[row.config] = ("run", "to run: " + ", ".join(names[p] for p in running))
+    return out
+
+
 def run(
     configs: list[tuple[str, str]] = CONFIGS,
     width: int = WIDTH,
@@ -307,38 +394,30 @@ def run(
     seed: int = ecp5.SEED,
     ecp5_timeout: float | None = ECP5_TIMEOUT,
     log=print,
+    rows: list[str] | None = None,
+    cache_dir: Path | None = None,
+    rerun: bool = False,
+    previous: list[dict] | None = None,
 ) -> tuple[list[dict], dict]:
     """Synthesize every entry of `configs`; return the summary (a list of dicts)
     and the run's facts (tools, wall times). `ecp5_for`: "all", "top"
     (fastnms_axi only), "none", or a set of entity names. `ppc_configs` adds
     the PPC rows (ppc_entries). Each distinct (entity, generics) is
     synthesized once; the outputs go under `root` (build/synth/results).
-    `ecp5_timeout`: nextpnr's limit in seconds on the ORB rows (None: none)."""
+    `ecp5_timeout`: nextpnr's limit in seconds on the ORB rows (None: none).
+    `rows`: the names or patterns of the rows to run (select_rows; None: all); the
+    others come from the cache, else from `previous` (the last summary), else are
+    left out (run.json's cache.missing). `cache_dir`: the cache (flows/synth/cache.py;
+    None: none); `rerun`: run the selected rows even when cached."""
     start = time.perf_counter()
     load = round(os.getloadavg()[0], 1)
     source = report.source_state()
     root = root or synth.SYNTH_BUILD / "results"
-    rows = [e for score, nms in configs for e in entries(score, nms, width, height, entities)]
-    if "blocks" in entities:
-        rows += block_entries(width, height)
-    if "orb" in entities:
-        rows += orb_entries(width, height)
-    rows += [e for score, nms in ppc_configs for e in ppc_entries(score, nms)]
+    every = all_rows(configs, width, height, entities, ppc_configs)
+    selected = {r.key for r in (select_rows(every, rows) if rows else every)}
     unique: dict[tuple, Entry] = {}
-    for row in rows:
+    for row in every:
         unique.setdefault(row.key, row)
-
-    netlists: dict[tuple, Path] = {}
-    results: dict[tuple, dict] = {k: {} for k in unique}
-    with synthesizable_top():
-        for key, row in unique.items():
-            t0 = time.perf_counter()
-            netlist, messages = synth.ghdl_synth(
-                row.entity, row.generics, _key_dir(root, row.entity, row.generics)
-            )
-            netlists[key] = netlist
-            results[key]["ghdl_seconds"] = time.perf_counter() - t0
-            results[key]["ghdl_latch_messages"] = "latch" in messages.lower()
 
     named = {"all": None, "none": set(), "top": {"fastnms_axi"}}
     ecp5_entities = named[ecp5_for] if isinstance(ecp5_for, str) else set(ecp5_for)
@@ -348,9 +427,56 @@ def run(
             return False  # the PPC comparison places the tops only
         return ecp5_entities is None or row.entity in ecp5_entities
 
+    def parts(row: Entry) -> dict[str, dict]:
+        """The parts of a row's result, each with the options its cache key holds."""
+        out: dict[str, dict] = {"xc7": {}}
+        if wants_ecp5(row):
+            extra = PPC_EXTRA_SEEDS if row.ppc_table else ()
+            limit = ecp5_timeout if row.orb_table else None
+            out["ecp5"] = cache.ecp5_options(row.ecp5_device, seed, extra, limit)
+        return out
+
+    store = cache.Store(cache_dir) if cache_dir else None
+    # (entity, generics) -> part -> figures; (key, part) -> (cache key, its inputs)
+    results: dict[tuple, dict[str, dict]] = {k: {} for k in unique}
+    keys: dict[tuple[tuple, str], tuple[str, dict]] = {}
+    todo: dict[tuple, list[str]] = {}
+    netlists: dict[tuple, Path] = {}
+    ghdl: dict[tuple, dict] = {}
+    store_not: set[tuple] = set()
+    with synthesizable_top():
+        inputs = cache.Inputs(synth.rtl_sources()) if store else None
+        for key, row in unique.items():
+            for part, options in parts(row).items():
+                if store and inputs:
+                    document = inputs.document(part, row.entity, row.generics, options)
+                    keys[key, part] = (cache.digest(document), document)
+                    hit = None if rerun and key in selected else store.get(keys[key, part][0])
+                    if hit is not None:
+                        results[key][part] = hit
+                        continue
+                if key in selected:
+                    todo.setdefault(key, []).append(part)
+        status = _row_status(every, unique, parts, results, todo, previous)
+        for row in every:
+            log(f"synth: {row.config}: {status[row.config][1]}")
+        for key in todo:
+            row = unique[key]
+            t0 = time.perf_counter()
+            netlist, messages = synth.ghdl_synth(
+                row.entity, row.generics, _key_dir(root, row.entity, row.generics)
+            )
+            netlists[key] = netlist
+            ghdl[key] = {
+                "ghdl_seconds": time.perf_counter() - t0,
+                "ghdl_latch_messages": "latch" in messages.lower(),
+            }
+            if store and inputs and inputs.changed(row.entity):
+                store_not.add(key)
+                log(f"synth: {row.config}: an RTL file changed as it ran: not cached")
+
     # Longest first: place and route, then the largest netlists.
-    tasks = [(k, "ecp5") for k, r in unique.items() if wants_ecp5(r)]
-    tasks += [(k, "xc7") for k in unique]
+    tasks = [(k, part) for k, ps in todo.items() for part in ps]
     tasks.sort(key=lambda t: (t[1] != "ecp5", -netlists[t[0]].stat().st_size))
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         futures = {}
@@ -359,36 +485,41 @@ def run(
             if kind == "xc7":
                 fut = pool.submit(xc7_figures, netlists[key], row.entity)
             else:
-                extra = PPC_EXTRA_SEEDS if row.ppc_table else ()
-                limit = ecp5_timeout if row.orb_table else None
+                options = parts(row)["ecp5"]
                 fut = pool.submit(
                     ecp5_figures,
                     netlists[key],
                     row.entity,
                     seed,
-                    extra,
+                    tuple(options["extra_seeds"]),
                     row.ecp5_device,
-                    limit,
+                    options["timeout"],
                 )
             futures[fut] = (key, kind)
         for fut in as_completed(futures):
             key, kind = futures[fut]
             figures = fut.result()
-            results[key].update(figures)
+            if kind == "xc7":
+                figures = {**ghdl[key], **figures}
+            # As summary.json and the cache hold them (a seed's Fmax keyed by text).
+            figures = json.loads(json.dumps(figures))
+            results[key][kind] = figures
             row = unique[key]
+            if store and key not in store_not:
+                store.put(*keys[key, kind], figures, row.config)
             gens = " ".join(f"{k}={v}" for k, v in row.generics.items())
             if kind == "xc7":
                 log(
-                    f"synth: {row.entity} ({gens}): xc7 {figures['lut']} LUT, {figures['ff']} FF, "
-                    f"{figures['bram18_equiv']} BRAM18, {figures['logic_levels']} levels "
-                    f"({figures['xc7_seconds']:.0f} s)"
+                    f"synth: {row.config}: {row.entity} ({gens}): xc7 {figures['lut']} LUT, "
+                    f"{figures['ff']} FF, {figures['bram18_equiv']} BRAM18, "
+                    f"{figures['logic_levels']} levels ({figures['xc7_seconds']:.0f} s)"
                 )
             else:
                 e = figures["ecp5"]
                 fmax = figures["ecp5_fmax_mhz"]
                 seeds = figures.get("ecp5_seed_fmax_mhz")
                 log(
-                    f"synth: {row.entity} ({gens}): ECP5 "
+                    f"synth: {row.config}: {row.entity} ({gens}): ECP5 "
                     + (
                         figures["ecp5_result"]
                         if figures.get("ecp5_result")
@@ -400,8 +531,16 @@ def run(
                 )
 
     summary = []
-    for row in rows:
-        figures = dict(results[row.key])
+    for row in every:
+        where, _ = status[row.config]
+        if where == "missing":
+            continue
+        if where == "previous summary":
+            figures = _previous_figures(row, previous) or {}
+        else:
+            figures = {}
+            for part in parts(row):
+                figures.update(results[row.key][part])
         figures.setdefault("ecp5_fmax_mhz", None)
         summary.append(
             {
@@ -416,6 +555,12 @@ def run(
                 **figures,
             }
         )
+    kept = {row.key for row in every if status[row.config][0] != "missing"}
+    by_status: dict[str, list[str]] = {}
+    for config, (where, _) in status.items():
+        by_status.setdefault(where, []).append(config)
+    counts = ", ".join(f"{len(v)} {k}" for k, v in by_status.items())
+    log(f"synth: {len(every)} rows: {counts}")
     info = {
         "tools": {**ecp5.versions(), "ghdl": ghdl_version()},
         "xc7_flow": "ghdl --synth --out=verilog, then yosys synth_xilinx -family xc7 -flatten",
@@ -430,15 +575,31 @@ def run(
         "cores": os.cpu_count(),
         "load_before": load,
         "source": source,
-        "distinct_syntheses": len(unique),
-        "ecp5_runs": sum(1 for r in unique.values() if wants_ecp5(r)),
+        "distinct_syntheses": len(kept),
+        "ecp5_runs": sum(1 for k in kept if wants_ecp5(unique[k])),
         "wall_seconds": time.perf_counter() - start,
+        # Where each row's figures come from: this run, the cache, the previous summary.
+        "cache": {
+            # Relative to the repository: this file is committed (docs/results/).
+            "dir": _relative(cache_dir) if cache_dir else None,
+            "rows_selected": list(rows) if rows else None,
+            "rerun": rerun,
+            **{
+                where.replace(" ", "_"): by_status.get(where, [])
+                for where in ("cached", "run", "partly cached", "previous summary", "missing")
+            },
+        },
     }
     return summary, info
 
 
+def _relative(path: Path) -> str:
+    path = Path(path).resolve()
+    return str(path.relative_to(REPO)) if path.is_relative_to(REPO) else path.name
+
+
 def main(argv: list[str] | None = None) -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="summary", description=__doc__.split("\n\n")[0])
     ap.add_argument("--width", type=int, default=WIDTH)
     ap.add_argument("--height", type=int, default=HEIGHT)
     ap.add_argument("--configs", default=",".join(f"{s}-{n}" for s, n in CONFIGS))
@@ -459,26 +620,58 @@ def main(argv: list[str] | None = None) -> None:
     )
     ap.add_argument("--out", type=Path, default=SUMMARY)
     ap.add_argument("--no-report", action="store_true", help="do not rewrite docs/results.md")
+    ap.add_argument(
+        "--rows",
+        default="",
+        help="comma-separated row names (summary.json's `config`) or glob patterns to run, "
+        "e.g. fastnms_fifo-1920,fastnms_orb*; the others are kept from the cache or the "
+        "previous summary ('' for all)",
+    )
+    ap.add_argument("--cache", type=Path, default=cache.CACHE, help="the cache folder")
+    ap.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
+    ap.add_argument(
+        "--rerun", action="store_true", help="run the selected rows even when they are cached"
+    )
     args = ap.parse_args(argv)
     configs = [tuple(c.split("-", 1)) for c in args.configs.split(",") if c]
-    summary, info = run(
-        configs,
-        args.width,
-        args.height,
-        entities=args.entities.split(","),
-        ecp5_for=args.ecp5,
-        ppc_configs=[tuple(c.split("-", 1)) for c in args.ppc_configs.split(",") if c],
-        jobs=args.jobs,
-        seed=args.seed,
-        ecp5_timeout=args.ecp5_timeout,
-    )
+    try:
+        # The last summary of this checkout, else the committed one (a fresh clone).
+        last = args.out if args.out.exists() else report.SYNTH_JSON
+        previous = json.loads(last.read_text()) if last.exists() else None
+    except ValueError:
+        previous = None
+    try:
+        summary, info = run(
+            configs,
+            args.width,
+            args.height,
+            entities=args.entities.split(","),
+            ecp5_for=args.ecp5,
+            ppc_configs=[tuple(c.split("-", 1)) for c in args.ppc_configs.split(",") if c],
+            jobs=args.jobs,
+            seed=args.seed,
+            ecp5_timeout=args.ecp5_timeout,
+            rows=[r.strip() for r in args.rows.split(",") if r.strip()] or None,
+            cache_dir=None if args.no_cache else args.cache,
+            rerun=args.rerun,
+            previous=previous,
+        )
+    except UnknownRows as e:
+        ap.error(str(e))  # exits with status 2
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(summary, indent=1) + "\n")
     args.out.with_name("run.json").write_text(json.dumps(info, indent=1) + "\n")
     print(f"synth: wrote {args.out} ({len(summary)} entries) in {info['wall_seconds']:.0f} s")
+    missing = info["cache"]["missing"]
+    if missing and not args.no_report:
+        print(
+            f"synth: {len(missing)} rows neither run, cached nor in the previous summary "
+            "(run.json: cache.missing): docs/results.md is left as it is"
+        )
+        args.no_report = True
     if not args.no_report:
         path = report.update_synth(summary, info)
-        print(f"synth: rewrote the synthesis section of {path.relative_to(REPO)}")
+        print(f"synth: wrote docs/results/synth.json and rendered {path.relative_to(REPO)}")
 
 
 if __name__ == "__main__":

@@ -16,13 +16,6 @@ from pathlib import Path
 from fastnms.sim.sources import REPO, rtl_sources
 
 SYNTH_BUILD = REPO / "build" / "synth"
-# Probes of designs not built (docs/fastnms_nms_region.md, Depth and clock).
-PROBES = Path(__file__).resolve().parent / "probes"
-
-
-def probe_sources(entity: str) -> list[Path]:
-    """A probe's sources: fastnms_pkg, then the probe's file (PROBES/ENTITY.vhd)."""
-    return [REPO / "rtl" / "common" / "fastnms_pkg.vhd", PROBES / f"{entity}.vhd"]
 
 
 def ghdl_synth(

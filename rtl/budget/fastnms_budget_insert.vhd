@@ -1,22 +1,6 @@
--- The keypoint budget's insertion pipeline (fastnms_cell_budget): one record
--- per clock into its cell's word (fastnms_budget_pkg), which keeps the cell's
--- best in_keep entries sorted, a tie to the earlier record.
---
--- The parent reads the record's cell (in_cell) in its bank (in_bank) at the
--- clock the record comes in (in_valid); the banks' words come back two clocks
--- later (rd_data_0/1, READ_LATENCY 2). Stage A holds the record during the
--- read. Stage B chooses the base word: the word read, or the word written by
--- the third or fourth record before (the read did not see it). Stage C
--- compares the record with every entry of the base word and with the two
--- records before it, when they are in the same cell (they are not in the
--- base word yet). Stage D turns the comparisons into the record's place (the
--- entries of the base that beat it, moved down by the records before it that
--- beat it, at most in_keep), inserts it into the cell's word (the base, or
--- the word of the one or two records before) and writes the word back
--- (wr_*, 4 clocks after the record). So records of the same cell follow each
--- other every clock, and no comparison waits for a choice made in its clock.
--- in_open marks the first record of a cell row in its bank: last_cell_0/1
--- restart there and then follow the highest cell written (the drain's end).
+-- The keypoint budget's insertion: one record per clock into its cell's
+-- sorted word (read, choose the base word, compare, insert, write back).
+-- Datasheet: docs/fastnms_cell_budget.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,8 +1,6 @@
--- The keypoint budget's memory word (fastnms_cell_budget): one word per cell,
--- K entries best first, entry j in bits (j + 1) * E - 1 .. j * E. An entry is
--- a valid bit, the score, then y and x inside the cell (8 bits each):
--- E = 1 + SCORE_BITS + 16 bits. Also the decoded beat's kind, as flags
--- (fastnms_budget_decode to the parent's decision).
+-- The keypoint budget's memory word (K entries best first, an entry a valid
+-- bit, the score, y and x in the cell) and the decoded beat's flags F_*.
+-- Datasheet: docs/fastnms_cell_budget.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

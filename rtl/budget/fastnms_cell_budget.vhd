@@ -1,41 +1,7 @@
--- Keypoint budget per grid cell (golden/budget.py): of a frame's records, at
--- most K per CELL x CELL cell, the best scores, a tie to the record first in
--- raster order. Cells start at the image origin; CELL is 16 .. 256, K 0 .. 15
--- (0: every record passes, in order).
---
--- Input: records (in_x, in_y, in_score, in_eof = '0') in raster order (the
--- 3x3 NMS and "none" emit them so; not the region NMS), then one end-of-frame
--- beat (in_eof = '1', in_x/in_y the frame's last pixel). Every beat carries
--- the configuration, in_cell_log (log2(CELL) - 4, above 4 read as 4) and
--- in_per_cell (K, above MAX_PER_CELL read as MAX_PER_CELL); the values of a
--- frame's first beat apply to the whole frame. Optional row-end beats
--- (in_row_end = '1', in_eof = '0', not records) promise that every record of
--- the lines up to in_y has come: the one at a cell row's last line starts
--- that row's drain then (the core's NMS sends one every 16 lines).
---
--- Output: with K > 0, a cell row's kept records once the row is complete (at
--- its last line's row-end beat, the first record of a later cell row, or the
--- end of frame): cells left to right, best first within a cell; then the
--- end-of-frame beat. With K = 0 the records and end of frame pass in order.
--- Row-end beats never leave the block.
---
--- How (docs/fastnms_cell_budget.md): each beat is decoded in two clocks
--- (fastnms_budget_decode: its frame's CELL and K, its kind as flags). The best
--- K of each cell of the cell row being filled are kept sorted in one memory
--- word per cell (K entries of a
--- valid bit, score and position in the cell, fastnms_budget_pkg), updated at
--- one record per clock by fastnms_budget_insert (read, choose the base word,
--- compare, insert, write back). Two banks: a complete cell row drains from one
--- (which also empties its words) while the next fills the other. Jobs (drain a
--- bank, emit an end of frame) queue in order, four at most.
---
--- The input waits (a) while the memory is cleared after reset
--- (ceil(MAX_WIDTH / 16) clocks); (b) when a record opens a cell row while the
--- other bank still drains (a drain takes 6 + 4 clocks per cell up to the last cell
--- written plus one per record; without row-end beats it starts at the first
--- record of the next cell row: the output held back, sparse rows without
--- row-end beats, or frames back to back), or the job queue is full; (c) with
--- K = 0, while the previous frame's jobs are not done.
+-- Keypoint budget per grid cell (golden/budget.py): of a frame's records in
+-- raster order, at most K per CELL x CELL cell, the best scores, each cell
+-- row's kept records once the row is complete.
+-- Datasheet: docs/fastnms_cell_budget.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

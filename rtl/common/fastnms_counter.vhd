@@ -1,10 +1,6 @@
--- A wide event counter built from SEGMENT-bit segments, exact on every clock,
--- whose carry chains stay short: each segment counts when the count enable
--- and the registered "all ones" flags of the segments below it are set, and
--- each flag is computed one count ahead (from "one below all ones"). So the
--- longest path is one segment's carry chain, whatever WIDTH is.
---
--- clear restarts the count: value becomes 1 if step is also set, else 0.
+-- A wide event counter built from SEGMENT-bit segments with short carry
+-- chains, exact on every clock; clear restarts the count.
+-- Datasheet: docs/fastnms_counter.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,16 +1,7 @@
--- Line buffer: LINES previous image lines of up to MAX_WIDTH pixels in one
--- block RAM, LINES pixels wide. For each pixel written at column in_col it
--- presents the whole image column at in_col: the LINES pixels above it and the
--- pixel itself.
---
--- It is a pipeline stage driven by a shared advance enable `en` (no handshake
--- of its own): on a clock with en = '1' a new pixel enters when in_valid = '1'
--- and everything inside moves one step; with en = '0' everything holds.
--- out_column is valid READ_LATENCY advancing clocks after its pixel entered,
--- when out_valid = '1'. Slice r of out_column (bits r*DATA_WIDTH upwards) is
--- the pixel LINES - r rows above the new one: slice 0 the oldest, slice LINES
--- the new pixel. The runtime width is whatever range of columns the caller
--- writes; lines at columns not yet written in this frame hold older data.
+-- LINES previous image lines in one block RAM: for each pixel written at
+-- in_col, the whole image column at in_col. A pipeline stage under the
+-- shared advance enable `en`.
+-- Datasheet: docs/fastnms_line_buffer.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,4 +1,5 @@
--- Shared helpers for the fastnms core.
+-- Shared helpers: clog2, bits_for, fifo_words, to_sl, at_least, greater.
+-- Datasheet: docs/README.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -10,6 +11,10 @@ package fastnms_pkg is
 
   -- Bits needed to hold the value n itself.
   function bits_for (n : natural) return positive;
+
+  -- The RAM words of a fastnms_fifo of `depth` words: depth rounded up to a
+  -- power of two, at least 4 (its ALMOST_FULL_LEVEL counts from them).
+  function fifo_words (depth : positive) return positive;
 
   -- '1' for true.
   function to_sl (b : boolean) return std_logic;
@@ -50,6 +55,13 @@ package body fastnms_pkg is
   begin
     return clog2(n + 1);
   end function bits_for;
+
+  function fifo_words (depth : positive) return positive is
+  begin
+
+    return 2 ** maximum(2, clog2(depth));
+
+  end function fifo_words;
 
   function to_sl (b : boolean) return std_logic is
   begin

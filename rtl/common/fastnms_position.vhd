@@ -1,22 +1,6 @@
--- Position of a pixel stream: the column x and the row y, one counter each,
--- the one way the blocks count where a pixel is (the window generator's
--- input and output sides, the NMS blocks, the video checker).
---
--- Each axis has three controls, in this priority:
---   clear  the axis becomes 0 (a new line for x, a new frame for y)
---   start  the axis becomes 1 (the clock's pixel was the first one: x after
---          a start of frame that is not also the end of its line)
---   step   the axis counts one up (a pixel for x, a line for y)
--- and keeps its value otherwise. The new value is on x / y on the clock
--- after the control (registered outputs, no reset of their own: a user
--- resets them by putting rst into x_clear and y_clear).
---
--- The user decides when a line or frame wraps (from tlast/eof, from a
--- registered "last column" flag compared one pixel ahead, or from a flush
--- pass), so the flags stay with it; this block keeps the counting itself
--- short: clear is the flip-flops' reset, step their enable, and the next
--- value is the carry chain (start costs a LUT on bit 0 only, and nothing when
--- tied to '0').
+-- The column x and row y of a pixel stream, one counter each (clear, start,
+-- step): the one way the blocks count where a pixel is.
+-- Datasheet: docs/fastnms_position.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

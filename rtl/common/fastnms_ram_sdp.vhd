@@ -1,14 +1,6 @@
--- Simple dual-port RAM: one write port, one read port, one clock.
--- Every memory of the core is an instance of this entity, so RAM inference is
--- written (and proven by the synthesis tests) once.
---
--- Read: rd_data shows mem(rd_addr) READ_LATENCY clocks after a cycle with
--- rd_en = '1'; rd_en is a clock enable for the whole read pipeline, so with
--- rd_en = '0' rd_data holds. READ_LATENCY = 2 adds the block RAM output register. STYLE is passed to the
--- ram_style attribute ("block", "distributed", "auto").
--- Reading the address that is written in the same cycle gives undefined data:
--- callers never rely on it. Addresses must be below DEPTH (simulation stops
--- with an index error otherwise).
+-- Simple dual-port RAM (one write port, one read port, one clock): every
+-- memory of the core is an instance, so RAM inference is proven once.
+-- Datasheet: docs/fastnms_ram_sdp.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,17 +1,7 @@
 -- Skid buffer: a two-entry pipeline register whose in_ready is a flip-flop,
--- the one way the core cuts a ready path. Full throughput: one beat per clock
--- while out_ready stays high; when out_ready drops, the beat already on its
--- way is parked in the second entry.
---
--- PING_PONG = false: out_data is a register (the main entry); out_ready
--- enables the data registers, so it fans out to 2 x WIDTH flip-flops.
--- PING_PONG = true: the two entries are written alternately and out_data is a
--- 2:1 multiplexer. The entry the next beat goes to takes in_data on every
--- clock while it is free, so the data registers are enabled by the write
--- pointer and the full flag only: in_valid and out_ready drive four control
--- flip-flops and nothing else. A handshake computed from the beat itself (the
--- AXI top's video gate looks at the start-of-frame bit) then closes its loop
--- through those few flip-flops, not through every data register.
+-- the one way the core cuts a ready path (PING_PONG: the main/skid or the
+-- ping-pong style).
+-- Datasheet: docs/fastnms_skid_buffer.md
 library ieee;
   use ieee.std_logic_1164.all;
 

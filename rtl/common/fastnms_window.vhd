@@ -1,47 +1,7 @@
--- Window generator: turns a raster stream of pixels, PPC pixels per beat
--- (pixel 0 of a beat in the low bits), into a stream of neighbourhoods, one
--- output beat per input beat of the frame.
---
--- Output beat k of a frame holds the WINDOW x WINDOW windows centred on its
--- PPC pixels as one block of WINDOW rows x (WINDOW - 1 + PPC) columns; out_x,
--- out_y give the position of the beat's first pixel, out_sof marks beat
--- (0, 0), out_eol the last beat of each row, out_eof the frame's last beat.
--- out_inside(i) = '1' when the window of the beat's pixel i lies wholly in
--- the frame (R <= x <= W-1-R, R <= y <= H-1-R, R = WINDOW/2); that window is
--- meaningful only then. With B = W / PPC beats per row and LB = ceil(R / PPC),
--- the output runs R rows and LB beats behind the input (lockstep): beat k
--- leaves READ_LATENCY + 2 clocks after beat k + R*B + LB was accepted. The
--- last R*B + LB beats of a frame are border beats that need no pixel: they
--- leave while the next frame's first beats enter, or on their own when the
--- input is idle, so back-to-back frames of equal width run at one beat per
--- clock. (PPC = 1: one pixel per beat, LB = R.)
---
--- Geometry comes from cfg_width/cfg_height, sampled when the start-of-frame
--- beat is accepted (they must not change in the 3 clock periods before the
--- edge that accepts it: two register steps derive the limits). in_sof
--- starts a frame; in_eol is only checked. Malformed input never stalls the
--- block:
---   err_line  pulses when in_eol is missing on the last beat of a line or
---             present elsewhere (the frame keeps its configured geometry);
---   err_frame pulses on a start of frame before the previous frame ended (the
---             cut frame is completed with border beats if its output had
---             started, else dropped; one extra clock), on each beat outside
---             any frame (dropped) and on each beat of a frame whose size is
---             out of range (dropped): a width below MIN_WIDTH (WINDOW, raised
---             to whole beats and to at least READ_LATENCY + 1 beats), above
---             MAX_WIDTH or not a multiple of PPC, a height outside
---             WINDOW..MAX_HEIGHT.
---
--- Handshake: the whole pipeline advances exactly on the clocks with
--- out_ready = '1' (a beat transfers when out_valid is also high). Beats enter
--- a two-entry input buffer whose in_ready is a register; it holds up to two
--- beats while the pipeline waits. Put a skid buffer behind this block if its
--- consumer's ready is not a register.
---
--- Logic depth: every decision is taken from registers. Beats enter the input
--- buffer first; the counters reset through the flip-flops' synchronous
--- reset, so their next value is the bare carry chain; the comparisons behind
--- the position flags are made one beat ahead.
+-- Window generator: a raster stream of PPC pixels per beat in, one beat of
+-- WINDOW x WINDOW neighbourhoods per input beat out, with frame checking and
+-- recovery from malformed input.
+-- Datasheet: docs/fastnms_window.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,57 +1,7 @@
--- The corner pipeline without bus interfaces: FAST-9/16 detector, then
--- non-maxima suppression. Pixels in, corner records out.
---
--- Generics: SCORE ("opencv" | "sad") and NMS ("3x3": OpenCV's rule,
--- "region4" / "region8": the paper's region NMS with 4- or 8-connectivity, or
--- "none": every corner).
---
--- PPC pixels per clock (1, 2 or 4; pixel 0 of a beat in the low byte of
--- in_data): the detector and the NMS "3x3" and "none" take a beat of PPC
--- pixels every clock (the output stays one record per clock: "3x3" never has
--- more on average, "none" makes the input wait when it does); the region NMS
--- takes one pixel per clock (PPC = 1 only, asserted).
---
--- Input: as fastnms_fast_detector (cfg_width, cfg_height, cfg_threshold
--- taken with the start-of-frame beat). Output: one record per corner
--- (out_x, out_y, out_score, out_eof = '0'; raster order except for the
--- region NMS, whose records leave as regions close), then one end-of-frame
--- beat (out_eof = '1'), also for a frame without corners.
---
--- With MAX_PER_CELL > 0 (NMS "3x3" or "none"), fastnms_cell_budget follows
--- the NMS: at most cfg_per_cell records (clamped to MAX_PER_CELL; 0: all) per
--- cell of 2 ** (cfg_cell_log + 4) pixels, taken with the start-of-frame beat
--- like the threshold; each cell row's records leave once it is complete
--- (the NMS, built with ROW_MARKS, tells the budget at every 16th line's end),
--- cells left to right, best first (docs/fastnms_cell_budget.md). The region
--- NMS's records come in closing order, up to many rows late: no budget with
--- it (asserted). MAX_PER_CELL = 0 builds no budget and ignores cfg_cell_log
--- and cfg_per_cell.
---
--- With the region NMS, each record carries its region's area (out_area:
--- corner pixels, saturating at 2047; 0 with the other NMS and on the
--- end-of-frame beat), and the paper's region filtering drops the regions
--- with fewer than cfg_min_area pixels (taken with the start-of-frame beat
--- like the threshold; 0 and 1 keep every region; the other NMS ignore it).
---
--- With DESCRIPTOR = "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0, all
--- asserted), the records are ORB keypoints (docs/orb_rtl.md, *In the core*):
--- the NMS's records 31 pixels or more inside the frame (ORB's border), then
--- the budget, then fastnms_orb_stage, which adds each keypoint's angle
--- (out_angle, float32 bits, degrees) and descriptor (out_descriptor, bit i =
--- pair i), equal to golden/orb.py's orb_features. The detector hands over
--- its pixels and their blur with the scores (PIXELS). CELL is clamped to
--- ORB_MAX_CELL (which sizes the rows kept). One frame at a time goes through:
--- the detector's next frame waits at its first result until the frame
--- before has left (the detector and the window generator go on meanwhile).
--- With K = 0 nothing bounds the records, and a record that finds the ORB
--- queue full is dropped (orb_dropped pulses). Without ORB out_angle and
--- out_descriptor are 0.
---
--- With SCORE_TAP, the detector's per-pixel stream (score, 0 where there is no
--- corner) is also presented on the tap_* ports, one beat per input beat with
--- start-of-frame and end-of-line; the detector advances only when both the
--- NMS and the tap accept (a fork: each side's valid waits for the other's
--- ready, and both readies come from registers).
+-- The corner pipeline without bus interfaces: the FAST detector, then one
+-- NMS (3x3, region4, region8 or none), optionally the keypoint budget and
+-- ORB's angle and descriptor. Pixels in, corner records out.
+-- Datasheet: docs/fastnms_core.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -431,9 +381,6 @@ begin
         rst       => rst,
         in_valid  => q_push,
         in_ready  => q_ready,
-        in_room2  => open,
-        in_room3  => open,
-        in_spare  => open,
         in_data   => d_tag,
         out_valid => q_valid,
         out_ready => s_valid and s_ready and s_eof,

@@ -1,14 +1,6 @@
--- FAST front stage: from a 7x7 window to the 16 circle differences. With v
--- the centre and c_k circle pixel k (OpenCV's order):
---   above(k) = '1' when c_k > v, below(k) = '1' when c_k < v,
---   diff(k)  = |c_k - v| (8 bits).
--- Everything after works on these: c_k > v + t exactly when above(k) and
--- diff(k) > t, c_k < v - t when below(k) and diff(k) > t, so no sum can wrap,
--- and one value per pixel serves both sides of the segment test.
---
--- Two register stages under the shared advance enable `en`: both
--- differences and the comparisons, then the selection (a subtractor and a
--- multiplexer in one stage would be five levels of logic).
+-- FAST front stage: from a 7x7 window to the 16 circle pixels' sides
+-- (above, below) and absolute differences from the centre.
+-- Datasheet: docs/fastnms_fast_detector.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

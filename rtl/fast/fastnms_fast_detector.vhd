@@ -1,50 +1,7 @@
--- FAST-9/16 corner detector: a stream of 8-bit pixels in, PPC per beat
--- (pixel 0 in the low byte), one result per pixel out, bit-exact with
--- OpenCV's cv::FAST (TYPE_9_16) segment test and, with SCORE = "opencv", its
--- corner score; SCORE = "sad" gives the paper's sum-of-absolute-differences
--- score instead.
---
--- Output: one beat per input beat, in raster order, with out_sof on beat
--- (0, 0), out_eol on the last beat of each line and out_eof on the frame's
--- last beat; pixel i of a beat is bit i of out_corner and slice i of
--- out_score. out_width and out_height give the size (out_tag the cfg_tag)
--- of the frame whose first beat (out_sof) is next to leave: they change at least 10 clocks
--- before that beat, while the previous frame's last beats may still be
--- leaving, and hold until the next frame's first beat is on its way. A block
--- downstream that samples them with out_sof sees a value stable for the 10
--- clocks before. out_corner(i) = '1' and
--- score i = the score (8 bits for opencv, 12 for sad) at a corner;
--- out_corner(i) = '0' and score i = 0 on the 3-pixel border and wherever the
--- segment test fails.
---
--- Input: beats in raster order with in_sof on the first beat of a frame and
--- in_eol on the last beat of each line. cfg_width (7..MAX_WIDTH, a multiple
--- of PPC; see fastnms_window for the narrowest legal width) and
--- cfg_height (7..MAX_HEIGHT) are sampled with the start-of-frame beat and
--- must not change in the 3 clock periods before the edge that accepts it
--- (fastnms_window); cfg_threshold
--- (0..255) and cfg_tag (any per-frame word for the blocks after the
--- detector) are sampled when the start-of-frame pixel is accepted. As in
--- AXI4-Stream, an offered beat stays (in_valid high, data stable) until it is
--- taken. err_line and
--- err_frame flag malformed input (see fastnms_window); the block never stalls
--- on it and the next well-formed frame is exact.
---
--- Pipeline, one beat per clock, all stages under one advance enable that is
--- the output skid buffer's registered ready; the window generator and the
--- markers are shared, one lane per pixel of a beat does the rest:
---   window generator -> circle differences -> segment test (3 stages)
---                                          -> score (7 stages) -> mask -> skid buffer
--- The result of beat k leaves LATENCY clocks after beat k + 3*B + ceil(3/PPC)
--- was accepted, B = W / PPC (see docs/fastnms_fast_detector.md).
---
--- With PIXELS, each beat also carries its pixels (out_pixel, the windows'
--- centres) and ORB's 7x7 Gaussian of them (out_blurred, fastnms_orb_blur, 13
--- stages: the score waits for it, so LATENCY grows by 4 with opencv and 3
--- with sad); ORB's keypoint blocks take both images from there, in step with
--- the scores. Both are meaningful 3 pixels or more inside the frame, where
--- the window is (ORB reads nothing nearer the border). Without PIXELS both
--- are 0.
+-- FAST-9/16 corner detector: PPC 8-bit pixels per beat in, one result per
+-- pixel out (corner flag and score, SCORE "opencv" or "sad"), bit-exact
+-- with OpenCV's cv::FAST; with PIXELS also the pixels and ORB's blur.
+-- Datasheet: docs/fastnms_fast_detector.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

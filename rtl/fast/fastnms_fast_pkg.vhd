@@ -1,4 +1,5 @@
 -- FAST-9/16: the circle, the arcs and the types shared by the detector blocks.
+-- Datasheet: docs/README.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,23 +1,6 @@
--- OpenCV's FAST corner score (cornerScore<16>): over the 16 arcs of 9
--- contiguous circle pixels, the largest arc minimum of (c - v) or of (v - c),
--- minus 1. For a corner it lies in t .. 254; for a non-corner the value is
--- meaningless (the detector masks it).
---
--- A corner's score comes from an arc whose pixels all lie on one side of the
--- centre: any other arc has a negative minimum on both sides. On such an arc
--- c - v (or v - c) is |c - v|, so one minimum over diff(k) = |c_k - v| per
--- arc, kept where the arc is one-sided, gives every arc's contribution.
---
--- Seven register stages under the shared advance enable `en`; each is at
--- most a comparison and a selection (at most 4 levels of logic):
---   1. minima of the 16 cyclic triples (k, k+1, k+2); the comparisons of
---      neighbouring pairs are shared between triples; likewise the triples
---      whose pixels are all above (below) the centre;
---   2. arc minima: min of the triples k, k+3, k+6, again sharing pairs, and
---      the one-sided arcs;
---   3. the arc minima of one-sided arcs, 0 for the others;
---   4.-6. maximum over the 16 arcs, three at a time (16 -> 6 -> 2 -> 1);
---   7. minus 1.
+-- OpenCV's FAST corner score (cornerScore<16>), 7 register stages under the
+-- shared advance enable `en`.
+-- Datasheet: docs/fastnms_fast_detector.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

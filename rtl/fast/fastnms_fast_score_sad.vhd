@@ -1,16 +1,6 @@
--- The paper's corner score (eq. 1) with the threshold taken off each term:
--- max(sum over brighter pixels of (c - v - t), sum over darker pixels of
--- (v - c - t)). 0 .. 4080, 12 bits. For a non-corner the value is
--- meaningless (the detector masks it).
---
--- Eight register stages under the shared advance enable `en`:
---   1. per circle pixel, diff(k) - t and whether the pixel is brighter than
---      centre + t or darker than centre - t;
---   2. the 32 terms: diff(k) - t on the pixel's side, 0 on the other side and
---      within the threshold;
---   3.-6. a pipelined adder tree per side, 16 -> 8 -> 4 -> 2 -> 1;
---   7. the comparison of the two sums;
---   8. the larger sum.
+-- The paper's sum-of-absolute-differences corner score, 8 register stages
+-- under the shared advance enable `en`.
+-- Datasheet: docs/fastnms_fast_detector.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

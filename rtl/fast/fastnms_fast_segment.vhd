@@ -1,10 +1,6 @@
--- FAST-9/16 segment test: corner = '1' when 9 cyclically contiguous circle
--- pixels are all brighter than centre + t, or all darker than centre - t.
---
--- Three register stages under the shared advance enable `en`:
---   1. the 32 tests above(k) and diff(k) > t, below(k) and diff(k) > t;
---   2. the AND of each cyclic triple of flags (k, k+1, k+2), per side;
---   3. the OR over the 32 arcs of the AND of triples k, k+3, k+6.
+-- FAST-9/16 segment test: 9 contiguous circle pixels all brighter than
+-- centre + t or all darker than centre - t; 3 register stages.
+-- Datasheet: docs/fastnms_fast_detector.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,39 +1,14 @@
--- OpenCV's 3x3 non-maxima suppression on a per-pixel score stream: a pixel
--- survives when its score is strictly greater than each of its 8
--- neighbours' scores (a non-corner, or a neighbour outside the image,
--- counting as 0; equal neighbours suppress each other). Fed the detector's
--- `opencv` scores, the survivors are exactly cv2.FAST's keypoints with
--- nonmaxSuppression=True.
---
--- Input: beats of PPC pixels in raster order (in_sof, in_eol), score i of a
--- beat (slice i of in_score) 0 where there is no corner (as the detector
--- outputs). cfg_width and cfg_height are sampled with the start-of-frame
--- beat and must be stable for the two clocks before (the detector's
--- out_width/out_height are).
---
--- Output: one record per survivor in raster order (out_x, out_y, out_score,
--- out_eof = '0'), then one end-of-frame beat (out_eof = '1', out_x/out_y the
--- frame's last pixel, out_score 0), also for a frame without corners. With
--- ROW_MARKS, after the records of each line y with y mod 16 = 15 (the
--- frame's last line excepted) a row-end beat (out_row_end = '1', out_eof =
--- '0', out_x/out_y the line's last pixel, out_score 0): the keypoint budget
--- starts a cell row's drain with it. out_row_end is '0' on every other beat.
---
--- Pipeline: a 3x3 window of scores per pixel (two lines in block RAM), the 8
--- comparisons per pixel, their AND, then a skid buffer whose registered
--- ready is the advance enable of everything before it. One beat per clock.
--- With PPC > 1 a beat can hold several survivors (two at most with PPC = 4:
--- survivors are never 8-adjacent); fastnms_nms_serializer hands them out
--- one per clock from a FIFO of MAX_WIDTH / (2 PPC) + 16 beats, which holds
--- the worst burst, a row with a survivor on every other pixel (two rows
--- never bring more than one per beat on average), so the input never waits
--- for content while the output is ready.
+-- OpenCV's 3x3 non-maxima suppression on the detector's per-pixel score
+-- stream: one record per survivor in raster order, then an end-of-frame
+-- beat (with ROW_MARKS, row-end beats for the keypoint budget).
+-- Datasheet: docs/fastnms_nms_3x3.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 library work;
   use work.fastnms_pkg.all;
+  use work.fastnms_corner_pkg.all;
 
 entity fastnms_nms_3x3 is
   generic (
@@ -223,36 +198,46 @@ begin
 
   single_lane : if PPC = 1 generate
 
-    signal record_in  : std_logic_vector(x_t'length + y_t'length + SCORE_BITS + 1 downto 0);
-    signal record_out : std_logic_vector(record_in'range);
+    subtype corner_rec_t is corner_t(x(x_t'range), y(y_t'range), score(score_t'range));
+
+    constant CORNER_BITS : positive := corner_width(x_t'length, y_t'length, SCORE_BITS);
+
+    signal record_in  : corner_rec_t;
+    signal record_vec : std_logic_vector(CORNER_BITS - 1 downto 0);
+    signal record_out : std_logic_vector(CORNER_BITS - 1 downto 0);
+    signal out_rec    : corner_rec_t;
 
   begin
 
-    record_in <= s2_eof & '0' & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
-                 std_logic_vector(s2_score) when s2_keep(0) = '1' else
-                 s2_eof & s2_mark & std_logic_vector(s2_x) & std_logic_vector(s2_y) &
-                 (SCORE_BITS - 1 downto 0 => '0');
+    record_in <= (eof => s2_eof, row_end => '0', x => s2_x, y => s2_y,
+                   score => s2_score(score_t'range)) when s2_keep(0) = '1' else
+                 (eof => s2_eof, row_end => s2_mark, x => s2_x, y => s2_y,
+                   score => (score_t'range => '0'));
+
+    -- (A signal: GHDL 2.0's synthesis fails on pack() in a port map.)
+    record_vec <= pack(record_in);
 
     output_buffer : entity work.fastnms_skid_buffer
       generic map (
-        WIDTH => record_in'length
+        WIDTH => CORNER_BITS
       )
       port map (
         clk       => clk,
         rst       => rst,
         in_valid  => s2_valid and (s2_any or s2_eof or s2_mark),
         in_ready  => advance,
-        in_data   => record_in,
+        in_data   => record_vec,
         out_valid => out_valid,
         out_ready => out_ready,
         out_data  => record_out
       );
 
-    out_eof     <= record_out(record_out'high);
-    out_row_end <= record_out(record_out'high - 1);
-    out_x       <= unsigned(record_out(record_out'high - 2 downto y_t'length + SCORE_BITS));
-    out_y       <= unsigned(record_out(y_t'length + SCORE_BITS - 1 downto SCORE_BITS));
-    out_score   <= unsigned(record_out(SCORE_BITS - 1 downto 0));
+    out_rec     <= unpack(record_out, x_t'length, y_t'length, SCORE_BITS);
+    out_eof     <= out_rec.eof;
+    out_row_end <= out_rec.row_end;
+    out_x       <= out_rec.x;
+    out_y       <= out_rec.y;
+    out_score   <= out_rec.score;
 
   end generate single_lane;
 

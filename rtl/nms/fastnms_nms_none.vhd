@@ -1,30 +1,13 @@
--- No suppression: one record per corner of the detector's per-pixel stream,
--- in raster order (out_x, out_y, out_score, out_eof = '0'), then one
--- end-of-frame beat (out_eof = '1', out_x/out_y the frame's last pixel,
--- out_score 0), also for a frame without corners. With ROW_MARKS, after the
--- records of each line y with y mod 16 = 15 (the frame's last line
--- excepted) a row-end beat (out_row_end = '1', out_eof = '0', out_x/out_y the
--- line's last pixel, out_score 0) for the keypoint budget; with PPC = 1 a
--- corner on that last pixel takes the beat instead (the detector never
--- flags a corner there).
---
--- Input: the detector's output stream, one beat of PPC pixels with their
--- corner flags (in_corner(i)) and scores (slice i of in_score), in_eol and
--- in_eof (the position is counted from them; the detector's stream is always
--- well formed). One beat per clock; the registered ready of the output stage
--- is the advance enable.
---
--- With PPC = 1 the records leave through a skid buffer, one per clock, as
--- fast as the pixels come. With PPC = 2 or 4 a beat can hold up to PPC
--- corners and fastnms_nms_serializer hands them out one per clock from a FIFO
--- of MAX_WIDTH / PPC beats: content with more than one corner per clock on
--- average over a row (noise at low thresholds) makes the input wait.
+-- No suppression: one record per corner of the detector's stream, in raster
+-- order, then an end-of-frame beat (with ROW_MARKS, row-end beats).
+-- Datasheet: docs/fastnms_nms_none.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 library work;
   use work.fastnms_pkg.all;
+  use work.fastnms_corner_pkg.all;
 
 entity fastnms_nms_none is
   generic (
@@ -108,9 +91,15 @@ begin
 
   single_lane : if PPC = 1 generate
 
+    subtype corner_rec_t is corner_t(x(out_x'range), y(out_y'range), score(SCORE_BITS - 1 downto 0));
+
+    constant CORNER_BITS : positive := corner_width(out_x'length, out_y'length, SCORE_BITS);
+
     signal s1_valid : std_logic;
-    signal s1_data  : std_logic_vector(out_x'length + out_y'length + SCORE_BITS + 1 downto 0);
-    signal s1_out   : std_logic_vector(s1_data'range);
+    signal s1       : corner_rec_t;
+    signal s1_data  : std_logic_vector(CORNER_BITS - 1 downto 0);
+    signal s1_out   : std_logic_vector(CORNER_BITS - 1 downto 0);
+    signal out_rec  : corner_rec_t;
 
   begin
 
@@ -119,9 +108,12 @@ begin
 
       if rising_edge(clk) then
         if advance = '1' then
-          s1_valid <= in_valid and (in_corner(0) or in_eof or mark);
-          s1_data  <= in_eof & (mark and not in_corner(0)) & std_logic_vector(x) & std_logic_vector(y) &
-                      std_logic_vector(in_score);
+          s1_valid   <= in_valid and (in_corner(0) or in_eof or mark);
+          s1.eof     <= in_eof;
+          s1.row_end <= mark and not in_corner(0);
+          s1.x       <= x;
+          s1.y       <= y;
+          s1.score   <= in_score(SCORE_BITS - 1 downto 0);
         end if;
         if rst = '1' then
           s1_valid <= '0';
@@ -130,9 +122,12 @@ begin
 
     end process records;
 
+    -- (A signal: GHDL 2.0's synthesis fails on pack() in a port map.)
+    s1_data <= pack(s1);
+
     output_buffer : entity work.fastnms_skid_buffer
       generic map (
-        WIDTH => s1_data'length
+        WIDTH => CORNER_BITS
       )
       port map (
         clk       => clk,
@@ -145,11 +140,12 @@ begin
         out_data  => s1_out
       );
 
-    out_eof     <= s1_out(s1_out'high);
-    out_row_end <= s1_out(s1_out'high - 1);
-    out_x       <= unsigned(s1_out(s1_out'high - 2 downto out_y'length + SCORE_BITS));
-    out_y       <= unsigned(s1_out(out_y'length + SCORE_BITS - 1 downto SCORE_BITS));
-    out_score   <= unsigned(s1_out(SCORE_BITS - 1 downto 0));
+    out_rec     <= unpack(s1_out, out_x'length, out_y'length, SCORE_BITS);
+    out_eof     <= out_rec.eof;
+    out_row_end <= out_rec.row_end;
+    out_x       <= out_rec.x;
+    out_y       <= out_rec.y;
+    out_score   <= out_rec.score;
 
   end generate single_lane;
 

@@ -1,50 +1,8 @@
--- Region NMS (the paper's streaming NMS): one record per 4- or 8-connected
--- region of corner pixels, its maximum score, a tie going to the region's
--- first pixel in raster order, and its area (out_area: its corner pixels,
--- saturating at 2 ** AREA_BITS - 1; 0 on the end-of-frame beat). One pixel
--- per clock whatever the content.
---
--- The algorithm is golden/region_stream.py, step for step; the design, its
--- invariants and the clock schedule are in docs/fastnms_nms_region.md. In
--- short: the classes of one row's runs never cross, so the previous row's open
--- classes nest and live on a stack; per run (slot = start column / 2) a bit
--- says whether it is the first run of its class in its row (head table, one
--- bank per row parity) and one whether it is the last (last table): a first
--- run pushes its class, a later run continues the top, a last run pops it. A
--- data table holds each class's best key and area at its first run's slot, and every
--- column changes only the stack's top two entries, the current run's class
--- and one word of each table.
---
--- The block is this entity's parts, one job each (docs/fastnms_nms_region.md,
--- Parts), wired here:
---   fastnms_nms_region_schedule  which side steps each clock: the current
---                                row, the previous row's reader (with the
---                                row memory, read two columns ahead), the
---                                flush and the PRIME clocks;
---   fastnms_nms_region_tables    the head, last and data tables, read ahead
---                                of the reader, taking the writes that land
---                                on a word being read;
---   fastnms_nms_region_control   the column's decisions on flags only (the
---                                stack entries' flags, attached, active),
---                                registered as the column's operation (op);
---   fastnms_nms_region_keys      the key data path, carrying op out on the
---                                next clock: slots, keys, the stack's slots
---                                and keys, table writes, records;
--- then the record FIFO. Their shared types and widths are in
--- fastnms_nms_region_pkg.
---
--- Clocks: the current row steps one column per accepted pixel; rows >= 1 step
--- the previous row's reader with it. After a frame's last pixel the reader
--- flushes that row alone, one column per clock, while the next frame's first
--- row (which has no previous row) comes in; then the end-of-frame beat.
--- in_ready drops only when the record FIFO has no room, and, for a frame
--- narrower than the one before it, from its first row's last pixel until
--- the flush's last column, then two PRIME clocks (after a one-row frame, the
--- next frame waits instead).
---
--- The input is the detector's per-pixel stream: well formed (every line
--- cfg_width pixels ending with in_eol, the frame's last pixel with in_eof, the
--- next pixel the next frame's first); in_sof is only checked, in simulation.
+-- The paper's region NMS, exact: one record per 4- or 8-connected region of
+-- corner pixels (its best pixel, score and area), one pixel per clock for any
+-- content. Wires its parts (schedule, tables, control, keys), the input skid
+-- buffer and the record FIFO.
+-- Datasheet: docs/fastnms_nms_region.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -102,58 +60,15 @@ architecture rtl of fastnms_nms_region is
   signal px_eol    : std_logic;
   signal px_eof    : std_logic;
 
-  -- The schedule: this clock's steps, the current row, the reader.
-  signal cstep      : std_logic;
-  signal rstep      : std_logic;
-  signal lock       : std_logic;
-  signal flush_ends : std_logic;
-  signal first_row  : std_logic;
-  signal cm         : std_logic;
-  signal cx         : unsigned(XB - 1 downto 0);
-  signal cy         : unsigned(YB - 1 downto 0);
-  signal cur_bank   : std_logic;
-  signal pm         : std_logic;
-  signal p0         : std_logic;
-  signal r_last     : std_logic;
-  signal r_col0     : std_logic;
-  signal r_col1     : std_logic;
-  signal r_col2     : std_logic;
-  signal r_slot0    : std_logic;
-  signal r_bank     : std_logic;
-  signal ahead_slot : unsigned(SB - 1 downto 0);
-
-  -- The tables' words at the reader's column.
-  signal run_head  : std_logic;
-  signal run_last  : std_logic;
-  signal data_word : unsigned(DB - 1 downto 0);
-
-  -- The column's operation.
-  signal op        : std_logic_vector(OP_BITS - 1 downto 0);
-  signal op_slot   : unsigned(SB - 1 downto 0);
-  signal op_score  : unsigned(SCORE_BITS - 1 downto 0);
-  signal op_cx     : unsigned(XB - 1 downto 0);
-  signal op_cy     : unsigned(YB - 1 downto 0);
-  signal op_ram_wa : unsigned(RB - 1 downto 0);
-  signal op_ram_ra : unsigned(RB - 1 downto 0);
-
-  -- The table writes, registered by the key data path.
-  signal data_w_en       : std_logic;
-  signal data_w_slot     : unsigned(SB - 1 downto 0);
-  signal data_w_key      : unsigned(DB - 1 downto 0);
-  signal data_w_s0       : std_logic;
-  signal head_w_en       : std_logic;
-  signal head_w_addr     : unsigned(SB downto 0);
-  signal head_w_bit      : std_logic;
-  signal head_w_s1       : std_logic;
-  signal head_spare_en   : std_logic;
-  signal head_spare_addr : unsigned(SB downto 0);
-  signal head_spare_bit  : std_logic;
-  signal head_spare_s1   : std_logic;
-  signal last_w_en       : std_logic;
-  signal last_w_addr     : unsigned(SB downto 0);
-  signal last_w_bit      : std_logic;
-  signal last_w_s0       : std_logic;
-  signal last_w_s1       : std_logic;
+  -- The records between the parts (fastnms_nms_region_pkg): the schedule's
+  -- step, the tables' words at the reader's column, the column's operation,
+  -- the table writes.
+  signal step   : step_t(cx(XB - 1 downto 0), cy(YB - 1 downto 0), ahead_slot(SB - 1 downto 0));
+  signal run    : run_t(data(DB - 1 downto 0));
+  signal cmd    : command_t(slot(SB - 1 downto 0), score(SCORE_BITS - 1 downto 0), cx(XB - 1 downto 0),
+                            cy(YB - 1 downto 0), ram_wa(RB - 1 downto 0), ram_ra(RB - 1 downto 0));
+  signal writes : writes_t(data(slot(SB - 1 downto 0), word(DB - 1 downto 0)), head(addr(SB downto 0)),
+                           head_spare(addr(SB downto 0)), last(addr(SB downto 0)));
 
   -- Records.
   signal rec_valid : std_logic;
@@ -163,6 +78,7 @@ architecture rtl of fastnms_nms_region is
   signal rec_score : unsigned(SCORE_BITS - 1 downto 0);
   signal rec_area  : unsigned(AREA_BITS - 1 downto 0);
   signal rec_room  : std_logic;
+  signal rec_full  : std_logic;
   signal q_data    : std_logic_vector(OUT_BITS - 1 downto 0);
 
 begin
@@ -205,34 +121,17 @@ begin
       MAX_HEIGHT => MAX_HEIGHT
     )
     port map (
-      clk        => clk,
-      rst        => rst,
-      px_valid   => px_valid,
-      px_ready   => px_ready,
-      px_corner  => px_corner,
-      px_width   => px_width,
-      px_sof     => px_sof,
-      px_eol     => px_eol,
-      px_eof     => px_eof,
-      rec_room   => rec_room,
-      cstep      => cstep,
-      rstep      => rstep,
-      lock       => lock,
-      flush_ends => flush_ends,
-      first_row  => first_row,
-      cm         => cm,
-      cx         => cx,
-      cy         => cy,
-      cur_bank   => cur_bank,
-      pm         => pm,
-      p0         => p0,
-      r_last     => r_last,
-      r_col0     => r_col0,
-      r_col1     => r_col1,
-      r_col2     => r_col2,
-      r_slot0    => r_slot0,
-      r_bank     => r_bank,
-      ahead_slot => ahead_slot
+      clk       => clk,
+      rst       => rst,
+      px_valid  => px_valid,
+      px_ready  => px_ready,
+      px_corner => px_corner,
+      px_width  => px_width,
+      px_sof    => px_sof,
+      px_eol    => px_eol,
+      px_eof    => px_eof,
+      rec_room  => rec_room,
+      step      => step
     );
 
   tables : entity work.fastnms_nms_region_tables
@@ -242,40 +141,12 @@ begin
       SCORE_BITS => SCORE_BITS
     )
     port map (
-      clk             => clk,
-      rst             => rst,
-      rstep           => rstep,
-      pm              => pm,
-      p0              => p0,
-      r_last          => r_last,
-      r_col0          => r_col0,
-      r_col1          => r_col1,
-      r_col2          => r_col2,
-      r_slot0         => r_slot0,
-      r_bank          => r_bank,
-      ahead_slot      => ahead_slot,
-      op              => op,
-      op_slot         => op_slot,
-      data_w_en       => data_w_en,
-      data_w_slot     => data_w_slot,
-      data_w_key      => data_w_key,
-      data_w_s0       => data_w_s0,
-      head_w_en       => head_w_en,
-      head_w_addr     => head_w_addr,
-      head_w_bit      => head_w_bit,
-      head_w_s1       => head_w_s1,
-      head_spare_en   => head_spare_en,
-      head_spare_addr => head_spare_addr,
-      head_spare_bit  => head_spare_bit,
-      head_spare_s1   => head_spare_s1,
-      last_w_en       => last_w_en,
-      last_w_addr     => last_w_addr,
-      last_w_bit      => last_w_bit,
-      last_w_s0       => last_w_s0,
-      last_w_s1       => last_w_s1,
-      run_head        => run_head,
-      run_last        => run_last,
-      data_word       => data_word
+      clk    => clk,
+      rst    => rst,
+      step   => step,
+      cmd    => cmd,
+      writes => writes,
+      run    => run
     );
 
   control : entity work.fastnms_nms_region_control
@@ -286,37 +157,15 @@ begin
       CONNECTIVITY => CONNECTIVITY
     )
     port map (
-      clk        => clk,
-      rst        => rst,
-      rstep      => rstep,
-      cstep      => cstep,
-      lock       => lock,
-      flush_ends => flush_ends,
-      first_row  => first_row,
-      c0         => px_corner,
-      cm         => cm,
-      c_eol      => px_eol,
-      score      => px_score,
-      cx         => cx,
-      cy         => cy,
-      cur_bank   => cur_bank,
-      pm         => pm,
-      p0         => p0,
-      r_last     => r_last,
-      r_col0     => r_col0,
-      ahead_slot => ahead_slot,
-      run_head   => run_head,
-      run_last   => run_last,
-      last_w_en  => last_w_en,
-      last_w_s0  => last_w_s0,
-      last_w_bit => last_w_bit,
-      op         => op,
-      op_slot    => op_slot,
-      op_score   => op_score,
-      op_cx      => op_cx,
-      op_cy      => op_cy,
-      op_ram_wa  => op_ram_wa,
-      op_ram_ra  => op_ram_ra
+      clk    => clk,
+      rst    => rst,
+      step   => step,
+      c0     => px_corner,
+      c_eol  => px_eol,
+      score  => px_score,
+      run    => run,
+      last_w => writes.last,
+      cmd    => cmd
     );
 
   keys : entity work.fastnms_nms_region_keys
@@ -326,63 +175,45 @@ begin
       SCORE_BITS => SCORE_BITS
     )
     port map (
-      clk             => clk,
-      rst             => rst,
-      op              => op,
-      op_score        => op_score,
-      op_cx           => op_cx,
-      op_cy           => op_cy,
-      op_ram_wa       => op_ram_wa,
-      op_ram_ra       => op_ram_ra,
-      r_col0          => r_col0,
-      data_word       => data_word,
-      data_w_en       => data_w_en,
-      data_w_slot     => data_w_slot,
-      data_w_key      => data_w_key,
-      data_w_s0       => data_w_s0,
-      head_w_en       => head_w_en,
-      head_w_addr     => head_w_addr,
-      head_w_bit      => head_w_bit,
-      head_w_s1       => head_w_s1,
-      head_spare_en   => head_spare_en,
-      head_spare_addr => head_spare_addr,
-      head_spare_bit  => head_spare_bit,
-      head_spare_s1   => head_spare_s1,
-      last_w_en       => last_w_en,
-      last_w_addr     => last_w_addr,
-      last_w_bit      => last_w_bit,
-      last_w_s0       => last_w_s0,
-      last_w_s1       => last_w_s1,
-      rec_room        => rec_room,
-      rec_valid       => rec_valid,
-      rec_eof         => rec_eof,
-      rec_x           => rec_x,
-      rec_y           => rec_y,
-      rec_score       => rec_score,
-      rec_area        => rec_area
-    );
-
-  records : entity work.fastnms_fifo
-    generic map (
-      DEPTH => 8,
-      WIDTH => OUT_BITS,
-      STYLE => "distributed"
-    )
-    port map (
       clk       => clk,
       rst       => rst,
-      in_valid  => rec_valid,
-      in_ready  => open,
-      in_room2  => open,
-      in_room3  => rec_room,
-      in_spare  => open,
-      in_data   => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
-                   std_logic_vector(rec_score) & std_logic_vector(rec_area),
-      out_valid => out_valid,
-      out_ready => out_ready,
-      out_data  => q_data,
-      busy      => open
+      cmd       => cmd,
+      r_col0    => step.r_col0,
+      data_word => run.data,
+      writes    => writes,
+      rec_room  => rec_room,
+      rec_valid => rec_valid,
+      rec_eof   => rec_eof,
+      rec_x     => rec_x,
+      rec_y     => rec_y,
+      rec_score => rec_score,
+      rec_area  => rec_area
     );
+
+  -- rec_room: almost_full = '0' promises in_ready on this clock and the next
+  -- two (fastnms_fifo: R = 8 - 2 - 4), for the records in flight.
+  records : entity work.fastnms_fifo
+    generic map (
+      DEPTH             => 8,
+      WIDTH             => OUT_BITS,
+      STYLE             => "distributed",
+      ALMOST_FULL_LEVEL => 4
+    )
+    port map (
+      clk         => clk,
+      rst         => rst,
+      in_valid    => rec_valid,
+      in_ready    => open,
+      almost_full => rec_full,
+      in_data     => rec_eof & std_logic_vector(rec_x) & std_logic_vector(rec_y) &
+                     std_logic_vector(rec_score) & std_logic_vector(rec_area),
+      out_valid   => out_valid,
+      out_ready   => out_ready,
+      out_data    => q_data,
+      busy        => open
+    );
+
+  rec_room <= not rec_full;
 
   out_eof   <= q_data(OUT_BITS - 1);
   out_x     <= unsigned(q_data(OUT_BITS - 2 downto YB + SCORE_BITS + AREA_BITS));

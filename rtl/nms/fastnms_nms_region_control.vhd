@@ -1,17 +1,8 @@
--- The region NMS's control (fastnms_nms_region, docs/fastnms_nms_region.md,
--- Control): one column of the step's decisions per clock, on flags only,
--- from registers, registered as the column's operation (op), which the key
--- data path (fastnms_nms_region_keys) carries out on the next clock.
---
--- The flags are the stack entries' (last, runs, merged: top, second and
--- third in registers, the rest in a LUT RAM at the addresses the key data
--- path uses for the entries' slots and keys), the current run's attached
--- and active, the previous row's bits and its run's head and last bits
--- (fastnms_nms_region_tables). The decisions are made as if both sides
--- stepped: the stack takes them when the reader steps (rstep), attached
--- and active when the current row steps (cstep), and the operation carries
--- both enables (op's rv and cv) and the key selections gated by them (k_*).
--- The step's order is golden/region_stream.py's RegionStream.step.
+-- The region NMS's control: a column's decisions on flags only, registered
+-- as the column's operation (op), which fastnms_nms_region_keys carries out
+-- on the next clock; the stack entries' flags.
+-- Datasheet: docs/fastnms_nms_region.md
+-- Contract: docs/design/region_nms_pipeline.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -30,43 +21,24 @@ entity fastnms_nms_region_control is
   port (
     clk : in    std_logic;
     rst : in    std_logic;
-    -- The schedule (fastnms_nms_region_schedule): this clock's steps, the
-    -- current pixel, the current row, the reader's bits and position.
-    rstep      : in    std_logic;
-    cstep      : in    std_logic;
-    lock       : in    std_logic;
-    flush_ends : in    std_logic;
-    first_row  : in    std_logic;
-    c0         : in    std_logic;
-    cm         : in    std_logic;
-    c_eol      : in    std_logic;
-    score      : in    unsigned(SCORE_BITS - 1 downto 0);
-    cx         : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    cy         : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    cur_bank   : in    std_logic;
-    pm         : in    std_logic;
-    p0         : in    std_logic;
-    r_last     : in    std_logic;
-    r_col0     : in    std_logic;
-    ahead_slot : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
+    -- The schedule's step (fastnms_nms_region_schedule): this clock's steps,
+    -- the current row, the reader's bits and position.
+    step : in    step_t(cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                        ahead_slot(slot_bits(MAX_WIDTH) - 1 downto 0));
+    -- The current pixel: its corner bit, the end of its line, its score.
+    c0    : in    std_logic;
+    c_eol : in    std_logic;
+    score : in    unsigned(SCORE_BITS - 1 downto 0);
     -- The previous-row run's head and last bits (fastnms_nms_region_tables).
-    run_head : in    std_logic;
-    run_last : in    std_logic;
+    run : in    run_t(data(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0));
     -- The last table's write landing now, and whether it is to slot 0 (a
     -- last bit taken at column 0 on the clock before may change then).
-    last_w_en  : in    std_logic;
-    last_w_s0  : in    std_logic;
-    last_w_bit : in    std_logic;
-    -- The column's operation, registered: its decisions (to_op), the slot
-    -- the data table is read at, the pixel's score and position, the stack
-    -- RAM's write (push) and read (pop) addresses.
-    op        : out   std_logic_vector(OP_BITS - 1 downto 0);
-    op_slot   : out   unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    op_score  : out   unsigned(SCORE_BITS - 1 downto 0);
-    op_cx     : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    op_cy     : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    op_ram_wa : out   unsigned(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0);
-    op_ram_ra : out   unsigned(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0)
+    last_w : in    bit_table_write_t(addr(slot_bits(MAX_WIDTH) downto 0));
+    -- The column's operation, registered.
+    cmd : out   command_t(slot(slot_bits(MAX_WIDTH) - 1 downto 0), score(SCORE_BITS - 1 downto 0),
+                          cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                          ram_wa(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0),
+                          ram_ra(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0))
   );
 end entity fastnms_nms_region_control;
 
@@ -112,6 +84,10 @@ architecture rtl of fastnms_nms_region_control is
   -- The operation.
   signal op_r      : op_t;
   signal ram_wa    : unsigned(RB - 1 downto 0);
+  signal op_slot   : unsigned(SB - 1 downto 0);
+  signal op_score  : unsigned(SCORE_BITS - 1 downto 0);
+  signal op_cx     : unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+  signal op_cy     : unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
   signal ram_ra    : unsigned(RB - 1 downto 0);
   signal checks_on : boolean; -- false until the first reset: the invariants hold from then on
 
@@ -124,9 +100,16 @@ begin
     report "fastnms_nms_region_control: MAX_WIDTH must be at least 3"
     severity failure;
 
-  op        <= to_slv(op_r);
-  op_ram_wa <= ram_wa;
-  op_ram_ra <= ram_ra;
+  cmd <=
+  (
+    op     => op_r,
+    slot   => op_slot,
+    score  => op_score,
+    cx     => op_cx,
+    cy     => op_cy,
+    ram_wa => ram_wa,
+    ram_ra => ram_ra
+  );
 
   control : process (clk) is
 
@@ -165,8 +148,8 @@ begin
         pre_third := unpack(flags_rd);
       end if;
       pre_top := top;
-      if fix_last = '1' and last_w_en = '1' and last_w_s0 = '1' then
-        pre_top.last := last_w_bit;
+      if fix_last = '1' and last_w.en = '1' and last_w.s0 = '1' then
+        pre_top.last := last_w.data;
       end if;
       v_third  := pre_third;
       v_top    := pre_top;
@@ -178,7 +161,7 @@ begin
       touch    := false;
       below    := below3;
 
-      r_eol    := r_last = '1';
+      r_eol    := step.r_last = '1';
       row_ends := c_eol = '1';
 
       o             := op_r;
@@ -200,10 +183,10 @@ begin
       o.pop_final   := '0';
       o.pop_emit    := '0';
       o.flush_ends  := '0';
-      o.rv          := rstep;
-      o.cv          := cstep;
-      o.bank        := cur_bank;
-      o.r_col0      := r_col0;
+      o.rv          := step.rstep;
+      o.cv          := step.cstep;
+      o.bank        := step.cur_bank;
+      o.r_col0      := step.r_col0;
 
       -- synthesis translate_off
       if rst = '1' then
@@ -220,13 +203,13 @@ begin
       -- says which).
 
       -- The previous-row run at the reader's column: its bits are the
-      -- tables' (run_head, run_last), with the previous row's last writes
+      -- tables' (run.head, run.last), with the previous row's last writes
       -- taken as they land.
-      p_start := p0 = '1' and pm = '0';
-      p_end   := (pm = '1' and p0 = '0') or (p0 = '1' and r_eol);
+      p_start := step.p0 = '1' and step.pm = '0';
+      p_end   := (step.pm = '1' and step.p0 = '0') or (step.p0 = '1' and r_eol);
 
       -- synthesis translate_off
-      assert not (rstep = '1' and p_start and run_head = '0' and v_depth = 0)
+      assert not (step.rstep = '1' and p_start and run.head = '0' and v_depth = 0)
         report "fastnms_nms_region: a continuing run without an open class"
         severity failure;
       -- synthesis translate_on
@@ -234,8 +217,8 @@ begin
       -- 1. A previous-row run starts at rcol: a run that is not its class's
       -- first continues the top's class (classes nest), a first run pushes.
       if p_start then
-        if run_head = '0' then
-          v_top.last := run_last;
+        if run.head = '0' then
+          v_top.last := run.last;
         else
           o.push     := '1';
           o.push_ram := not below2(DB);
@@ -244,14 +227,14 @@ begin
             v_third := v_second;
           end if;
           v_second := v_top;
-          v_top    := (last => run_last, runs => '0', merged => '0');
+          v_top    := (last => run.last, runs => '0', merged => '0');
           v_depth  := v_depth + 1;
           pushed   := true;
         end if;
       end if;
 
       -- 2. A current-row run starts: a class of its own for now.
-      run_starts := c0 = '1' and cm = '0';
+      run_starts := c0 = '1' and step.cm = '0';
       if run_starts then
         o.start := '1';
         v_att   := '0';
@@ -259,9 +242,9 @@ begin
       end if;
 
       -- 3. Contact between the current run and the top's run (rows >= 1).
-      if first_row = '0' then
-        touch := (c0 = '1' and p0 = '1') or
-                 (CONNECTIVITY = 8 and ((c0 = '1' and pm = '1') or (cm = '1' and p0 = '1')));
+      if step.first_row = '0' then
+        touch := (c0 = '1' and step.p0 = '1') or
+                 (CONNECTIVITY = 8 and ((c0 = '1' and step.pm = '1') or (step.cm = '1' and step.p0 = '1')));
       end if;
       if touch then
         if v_att = '0' then
@@ -278,13 +261,13 @@ begin
       end if;
 
       -- 4. The pixel joins its run's class.
-      if c0 = '1' and cm = '1' then
+      if c0 = '1' and step.cm = '1' then
         o.pix_top := v_att;
         o.pix_cur := not v_att;
       end if;
 
       -- 5. The current run ends (at cx - 1, or at cx at the end of the row).
-      if (cm = '1' and c0 = '0') or (c0 = '1' and row_ends) then
+      if (step.cm = '1' and c0 = '0') or (c0 = '1' and row_ends) then
         o.cur_final := not v_att;
         v_act       := '0';
         v_att       := '0';
@@ -309,7 +292,7 @@ begin
         if popped.merged = '1' then
           o.pop_merged := '1';
           v_top.runs   := popped.runs;
-        elsif v_act = '1' and v_att = '1' and first_row = '0' then
+        elsif v_act = '1' and v_att = '1' and step.first_row = '0' then
           o.pop_detach := '1';
           v_att        := '0';
         elsif popped.runs = '1' then
@@ -324,28 +307,28 @@ begin
         v_att := '0';
       end if;
 
-      o.k_base_pushed := o.push and rstep;
-      o.k_merge_cur   := o.attach and not o.start and rstep;
-      o.k_merge_pix   := o.attach and o.start and rstep;
-      o.k_merge_top   := o.takeover and rstep;
-      o.k_pix         := o.pix_top and cstep;
-      o.k_keep_top    := o.pop and not o.pop_merged and o.push and rstep;
-      o.k_take_second := o.pop and not o.pop_merged and not o.push and rstep;
-      o.k_cur_start   := o.start and cstep;
-      o.k_cur_pix     := o.pix_cur and cstep;
-      o.k_detach      := o.pop_detach and rstep;
-      o.k_final       := o.pop_final and rstep;
+      o.k_base_pushed := o.push and step.rstep;
+      o.k_merge_cur   := o.attach and not o.start and step.rstep;
+      o.k_merge_pix   := o.attach and o.start and step.rstep;
+      o.k_merge_top   := o.takeover and step.rstep;
+      o.k_pix         := o.pix_top and step.cstep;
+      o.k_keep_top    := o.pop and not o.pop_merged and o.push and step.rstep;
+      o.k_take_second := o.pop and not o.pop_merged and not o.push and step.rstep;
+      o.k_cur_start   := o.start and step.cstep;
+      o.k_cur_pix     := o.pix_cur and step.cstep;
+      o.k_detach      := o.pop_detach and step.rstep;
+      o.k_final       := o.pop_final and step.rstep;
 
       -- The reader's side.
-      flags_we  <= rstep and o.push_ram;
+      flags_we  <= step.rstep and o.push_ram;
       flags_wa  <= o_ram_wa;
       flags_wd  <= pack(second);
-      flags_re  <= rstep and o.pop and o.pop_ram;
+      flags_re  <= step.rstep and o.pop and o.pop_ram;
       flags_ra  <= o_ram_ra;
-      fix_last  <= rstep and to_sl(p_start) and r_col0;
-      third_rd2 <= third_rd1 and not (rstep and o.push_ram);
-      third_rd1 <= rstep and o.pop and o.pop_ram;
-      if rstep = '1' then
+      fix_last  <= step.rstep and to_sl(p_start) and step.r_col0;
+      third_rd2 <= third_rd1 and not (step.rstep and o.push_ram);
+      third_rd1 <= step.rstep and o.pop and o.pop_ram;
+      if step.rstep = '1' then
         top    <= v_top;
         second <= v_second;
         third  <= v_third;
@@ -365,7 +348,7 @@ begin
       end if;
 
       -- synthesis translate_off
-      assert not (rstep = '1' and v_depth > STACK_DEPTH)
+      assert not (step.rstep = '1' and v_depth > STACK_DEPTH)
         report "fastnms_nms_region: stack overflow"
         severity failure;
       assert not checks_on or rst = '1' or
@@ -373,28 +356,28 @@ begin
               below4 = signed('0' & depth) - 4)
         report "fastnms_nms_region: below2, below3 or below4 out of step with the depth"
         severity failure;
-      assert not (lock = '1' and row_ends and v_depth /= 0)
+      assert not (step.lock = '1' and row_ends and v_depth /= 0)
         report "fastnms_nms_region: classes left open at the end of a row"
         severity failure;
       -- synthesis translate_on
 
       -- The current row's side.
-      if cstep = '1' then
+      if step.cstep = '1' then
         attached <= v_att;
         active   <= v_act;
       end if;
 
-      if flush_ends = '1' then
+      if step.flush_ends = '1' then
         o.flush_ends := '1';
       end if;
 
       op_r     <= o;
       ram_wa   <= o_ram_wa;
       ram_ra   <= o_ram_ra;
-      op_slot  <= ahead_slot;
+      op_slot  <= step.ahead_slot;
       op_score <= score;
-      op_cx    <= cx;
-      op_cy    <= cy;
+      op_cx    <= step.cx;
+      op_cy    <= step.cy;
 
       if rst = '1' then
         depth              <= (others => '0');

@@ -1,21 +1,8 @@
--- The region NMS's key data path (fastnms_nms_region, docs/fastnms_nms_region.md,
--- Key data path): it carries out the column's operation (op) that the control
--- (fastnms_nms_region_control) decided on the clock before, with the same
--- operations in the same order, on what the control never reads: slots and
--- keys. It keeps the stack's slots and keys (top, second and third in
--- registers, the rest in a block RAM at the addresses the control chose) and
--- the current class's; it merges keys, makes the table writes (registered:
--- a port's first write now, a second one, only at a row's last column, from
--- a spare register on the next clock) and the records (a closed region's
--- best pixel, or the end-of-frame beat). Beside each key it carries its
--- class's area (corner pixels), which merges by addition where the keys
--- merge by maximum; the record carries it saturated at 2 ** AREA_BITS - 1.
--- Inside, an area is its count modulo 2 ** AREA_BITS and a flag set once
--- the count has reached 2 ** AREA_BITS: the adder's carry out goes to the
--- flag, and no saturating multiplexer follows the adder. It selects only on
--- the operation's registered bits and on its own comparisons; nothing goes
--- back to the control but the registered writes, which the tables and the
--- control see landing.
+-- The region NMS's key data path: the control's operation (op) carried out
+-- on slots, keys and areas a clock later; the stack's slots and keys, the
+-- table writes and the records.
+-- Datasheet: docs/fastnms_nms_region.md
+-- Contract: docs/design/region_nms_pipeline.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -34,38 +21,22 @@ entity fastnms_nms_region_keys is
     clk : in    std_logic;
     rst : in    std_logic;
     -- The column's operation (fastnms_nms_region_control), registered.
-    op        : in    std_logic_vector(OP_BITS - 1 downto 0);
-    op_score  : in    unsigned(SCORE_BITS - 1 downto 0);
-    op_cx     : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    op_cy     : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    op_ram_wa : in    unsigned(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0);
-    op_ram_ra : in    unsigned(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0);
+    cmd : in    command_t(slot(slot_bits(MAX_WIDTH) - 1 downto 0), score(SCORE_BITS - 1 downto 0),
+                          cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                          ram_wa(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0),
+                          ram_ra(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0));
     -- The reader is at its row's column 0 now (fastnms_nms_region_schedule):
     -- a write to slot 0 landing on the next clock is the key a push there takes.
     r_col0 : in    std_logic;
     -- The data word (key & area) of the reader's column (fastnms_nms_region_tables).
     data_word : in    unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
-    -- The table writes, registered (fastnms_nms_region_tables): the data
-    -- table's (and whether it is to slot 0), the head table's (slot & bank;
-    -- and the one waiting in the spare register), the last table's (slot &
-    -- '0'), each with whether it is to slot 0 or 1.
-    data_w_en       : out   std_logic;
-    data_w_slot     : out   unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    data_w_key      : out   unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
-    data_w_s0       : out   std_logic;
-    head_w_en       : out   std_logic;
-    head_w_addr     : out   unsigned(slot_bits(MAX_WIDTH) downto 0);
-    head_w_bit      : out   std_logic;
-    head_w_s1       : out   std_logic;
-    head_spare_en   : out   std_logic;
-    head_spare_addr : out   unsigned(slot_bits(MAX_WIDTH) downto 0);
-    head_spare_bit  : out   std_logic;
-    head_spare_s1   : out   std_logic;
-    last_w_en       : out   std_logic;
-    last_w_addr     : out   unsigned(slot_bits(MAX_WIDTH) downto 0);
-    last_w_bit      : out   std_logic;
-    last_w_s0       : out   std_logic;
-    last_w_s1       : out   std_logic;
+    -- The table writes, registered (to fastnms_nms_region_tables; the last
+    -- table's also to the control).
+    writes : out   writes_t(data(slot(slot_bits(MAX_WIDTH) - 1 downto 0),
+                                 word(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)),
+                            head(addr(slot_bits(MAX_WIDTH) downto 0)),
+                            head_spare(addr(slot_bits(MAX_WIDTH) downto 0)),
+                            last(addr(slot_bits(MAX_WIDTH) downto 0)));
     -- Records, to the record FIFO, which has room for the records in flight
     -- (rec_room: the end-of-frame beat waits for it).
     rec_room  : in    std_logic;
@@ -218,6 +189,16 @@ architecture rtl of fastnms_nms_region_keys is
     data : std_logic;
   end record bit_write_t;
 
+  -- A bit write as the tables take it, with whether it is to slot 0 or 1.
+  function table_write (w : bit_write_t; s0 : std_logic; s1 : std_logic) return bit_table_write_t is
+    variable t : bit_table_write_t(addr(bit_addr_t'range));
+  begin
+
+    t := (en => w.en, addr => w.addr, data => w.data, s0 => s0, s1 => s1);
+    return t;
+
+  end function table_write;
+
   -- (No constant wider than 32 bits: GHDL's Verilog output writes those as
   -- strings. The data of a write that is not enabled does not matter.)
   constant NO_BIT_WRITE : bit_write_t := (en => '0', addr => (others => '0'), data => '0');
@@ -277,25 +258,15 @@ begin
     report "fastnms_nms_region_keys: MAX_WIDTH must be at least 3"
     severity failure;
 
-  op_r <= to_op(op);
+  op_r <= cmd.op;
 
-  data_w_en       <= data_w.en;
-  data_w_slot     <= data_w.addr;
-  data_w_key      <= data_w.data & data_w.area;
-  data_w_s0       <= data_w0;
-  head_w_en       <= head_w.en;
-  head_w_addr     <= head_w.addr;
-  head_w_bit      <= head_w.data;
-  head_w_s1       <= head_w_s1_r;
-  head_spare_en   <= head_spare.en;
-  head_spare_addr <= head_spare.addr;
-  head_spare_bit  <= head_spare.data;
-  head_spare_s1   <= head_spare_s1_r;
-  last_w_en       <= last_w.en;
-  last_w_addr     <= last_w.addr;
-  last_w_bit      <= last_w.data;
-  last_w_s0       <= last_w_s0_r;
-  last_w_s1       <= last_w_s1_r;
+  writes <=
+  (
+    data       => (en => data_w.en, slot => data_w.addr, word => data_w.data & data_w.area, s0 => data_w0),
+    head       => table_write(head_w, '0', head_w_s1_r),
+    head_spare => table_write(head_spare, '0', head_spare_s1_r),
+    last       => table_write(last_w, last_w_s0_r, last_w_s1_r)
+  );
 
   -- The data path: the slots and keys of the column the control stepped on
   -- the clock before (op), with the same operations in the same order; the
@@ -385,7 +356,7 @@ begin
       detach    := op_r.k_detach = '1';
       final     := op_r.k_final = '1';
       cur_final := op_r.cur_final = '1' and op_r.cv = '1';
-      pix       := op_score & not op_cy & not op_cx;
+      pix       := cmd.score & not cmd.cy & not cmd.cx;
 
       -- The stack RAM's word below the second entry, read by the pop on
       -- the clock before (stack_re), straight into its register.
@@ -420,7 +391,7 @@ begin
                 (d_top.key and (d_top.key'range => op_r.k_merge_top));
       pix_in := (others => '0');
       if op_r.k_pix = '1' then
-        pix_in := op_score;
+        pix_in := cmd.score;
       end if;
       -- A tie goes to the first operand: the base, the class merging in,
       -- the pixel. The class merging in, when none does, is zero and
@@ -446,7 +417,7 @@ begin
       best_area  := area_sum(base_area, merge_area, op_r.k_pix);
       -- The current class's key after steps 2 and 4: the pixel starting it,
       -- or a pixel with a higher score.
-      cur_ge_pix := score_of(c_key) >= op_score;
+      cur_ge_pix := score_of(c_key) >= cmd.score;
       if op_r.k_cur_start = '1' or (op_r.k_cur_pix = '1' and not cur_ge_pix) then
         cur := pix;
       else
@@ -483,7 +454,7 @@ begin
       if pushed then
         if op_r.push_ram = '1' then
           stack_we <= '1';
-          stack_wa <= op_ram_wa;
+          stack_wa <= cmd.ram_wa;
           stack_wd <= pack(v_second);
           v_third  := v_second;
         end if;
@@ -493,8 +464,8 @@ begin
 
       -- 2. A current-row run starts: a class of its own for now.
       if start then
-        v_head := slot_of(op_cx, SB);
-        v_tail := slot_of(op_cx, SB);
+        v_head := slot_of(cmd.cx, SB);
+        v_tail := slot_of(cmd.cx, SB);
       end if;
 
       -- 3. The current run's class joins the top's, or the pushed class
@@ -540,7 +511,7 @@ begin
       cands(S_TOP_TAIL) := d_top.tail;
       cands(S_CUR_HEAD) := c_head;
       cands(S_CUR_TAIL) := c_tail;
-      cands(S_PIX)      := slot_of(op_cx, SB);
+      cands(S_PIX)      := slot_of(cmd.cx, SB);
       for i in cands'range loop
         slot0(i) := to_sl(cands(i) = 0);
         slot1(i) := to_sl(cands(i) = 1);
@@ -738,7 +709,7 @@ begin
   -- registers: its word is the third entry on the next clock (pops without
   -- a push between them are at least two columns apart, asserted).
   stack_re <= op_r.pop and op_r.pop_ram and op_r.rv;
-  stack_ra <= op_ram_ra;
+  stack_ra <= cmd.ram_ra;
 
   stack_memory : entity work.fastnms_ram_sdp
     generic map (

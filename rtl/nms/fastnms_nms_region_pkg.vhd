@@ -1,15 +1,7 @@
--- What the parts of the region NMS (fastnms_nms_region) share: the widths
--- they compute from the generics, the stack entries' flags and the column's
--- operation (op), which the control decides and the key data path carries
--- out one clock later.
---
--- Ports between the parts are std_logic_vector or unsigned, with widths
--- computed from the generics by the functions below: a record whose element
--- widths follow generics would need VHDL-2008 unconstrained record elements
--- or a generic package, which GHDL 2.0's synthesis is not trusted with. The
--- operation's one-bit decisions travel as a record of std_logic packed into
--- a vector (to_slv, to_op); its fields that have widths (slot, score,
--- position, stack RAM addresses) as ports of their own.
+-- What the region NMS's parts share: widths from the generics, the stack
+-- entries' flags, the column's operation (op), and the records their ports
+-- carry (step_t, run_t, command_t, writes_t).
+-- Datasheet: docs/fastnms_nms_region.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -104,11 +96,102 @@ package fastnms_nms_region_pkg is
     flush_ends    : std_logic; -- a flush's last column: the end-of-frame beat is due
   end record op_t;
 
+  -- op_t as a vector (bit 30: push .. bit 0: flush_ends), for a flat port
+  -- (tb/nms/vhdl/fastnms_nms_region_tables_flat.vhd).
   constant OP_BITS : positive := 31;
 
   function to_slv (o : op_t) return std_logic_vector;
 
   function to_op (v : std_logic_vector(OP_BITS - 1 downto 0)) return op_t;
+
+  -- The records between the parts. Their fields with widths are unconstrained
+  -- here and take their widths where a port or signal is declared:
+  -- x, cx: clog2(MAX_WIDTH); y, cy: bits_for(MAX_HEIGHT); slots: slot_bits;
+  -- bit table addresses: slot_bits + 1; data words: data_bits; stack RAM
+  -- addresses: clog2(stack_ram_words).
+
+  -- This clock's steps and where both sides are (fastnms_nms_region_schedule,
+  -- to the tables, the control and the key data path).
+  type step_t is record
+    -- The steps: the current row (cstep), the reader (rstep), both in
+    -- lock-step (lock, a row >= 1); a flush's last column (flush_ends).
+    cstep      : std_logic;
+    rstep      : std_logic;
+    lock       : std_logic;
+    flush_ends : std_logic;
+    -- The current row: a frame's first row, the previous pixel's corner
+    -- bit, its column and row, its head table bank (the row's parity).
+    first_row : std_logic;
+    cm        : std_logic;
+    cx        : unsigned;
+    cy        : unsigned;
+    cur_bank  : std_logic;
+    -- The reader: its bits at rcol - 1 and rcol, its row's last column
+    -- (r_last), rcol = 0, 1, 2 or < 2 (r_col0, r_col1, r_col2, r_slot0), its
+    -- row's head table bank, and the slot the tables are read at, two
+    -- columns ahead of it.
+    pm         : std_logic;
+    p0         : std_logic;
+    r_last     : std_logic;
+    r_col0     : std_logic;
+    r_col1     : std_logic;
+    r_col2     : std_logic;
+    r_slot0    : std_logic;
+    r_bank     : std_logic;
+    ahead_slot : unsigned;
+  end record step_t;
+
+  -- The tables' words at the reader's column (fastnms_nms_region_tables, to
+  -- the control and the key data path): the previous-row run's head bit (a
+  -- register) and last bit (the register, or the write landing now); the
+  -- data word (key & area), for the operation's clock.
+  type run_t is record
+    head : std_logic;
+    last : std_logic;
+    data : unsigned;
+  end record run_t;
+
+  -- The column's operation, registered (fastnms_nms_region_control, to the
+  -- tables and the key data path): its decisions, the slot the data table is
+  -- read at, the pixel's score and position, the stack RAM's write (push)
+  -- and read (pop) addresses.
+  type command_t is record
+    op     : op_t;
+    slot   : unsigned;
+    score  : unsigned;
+    cx     : unsigned;
+    cy     : unsigned;
+    ram_wa : unsigned;
+    ram_ra : unsigned;
+  end record command_t;
+
+  -- A table write, registered (fastnms_nms_region_keys, to the tables; the
+  -- last table's also to the control), with whether it is to slot 0 or 1:
+  -- the previous row's last writes land as the next row's first columns
+  -- take those words.
+  type data_table_write_t is record
+    en   : std_logic;
+    slot : unsigned;
+    word : unsigned; -- key & area (a data word)
+    s0   : std_logic;
+  end record data_table_write_t;
+
+  type bit_table_write_t is record
+    en   : std_logic;
+    addr : unsigned; -- slot & bank (the head table's), slot & '0' (the last table's)
+    data : std_logic;
+    s0   : std_logic;
+    s1   : std_logic;
+  end record bit_table_write_t;
+
+  -- The data table's write, the head table's (and the one waiting in its
+  -- spare register for the next clock), the last table's.
+  type writes_t is record
+    data       : data_table_write_t;
+    head       : bit_table_write_t;
+    head_spare : bit_table_write_t;
+    last       : bit_table_write_t;
+  end record writes_t;
 
 end package fastnms_nms_region_pkg;
 

@@ -1,20 +1,8 @@
--- The region NMS's clock schedule (fastnms_nms_region, docs/fastnms_nms_region.md,
--- Schedule): which side steps in each clock, and where each side is.
---
--- The current row steps one column per accepted pixel; rows >= 1 step the
--- previous row's reader with it (lock). After a frame's last pixel the
--- reader flushes that row alone, one column per clock, while the next
--- frame's first row (which has no previous row) comes in beside it. The
--- reader's bits come from the row memory (the previous row's corner bits,
--- two columns per word), read two columns ahead, so that every step starts
--- from registers: pm and p0 are the bits at rcol - 1 and rcol, the memory's
--- output the bit at rcol + 1, and the read issued now is of (rcol + 2) mod
--- the row's width. When a flush held the row memory in a first row's last
--- two columns, two PRIME clocks read the next row's first columns.
---
--- Everything here is flags and positions: the column's decisions are the
--- control's (fastnms_nms_region_control), the tables' reads ahead are
--- fastnms_nms_region_tables'.
+-- The region NMS's clock schedule: which side steps each clock (the current
+-- row, the previous row's reader, the flush, the PRIME clocks) and where each
+-- side is; the row memory, read two columns ahead.
+-- Datasheet: docs/fastnms_nms_region.md
+-- Contract: docs/design/region_nms_pipeline.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -41,33 +29,9 @@ entity fastnms_nms_region_schedule is
     px_eof    : in    std_logic;
     -- The record FIFO has room for the records in flight: every step waits for it.
     rec_room : in    std_logic;
-    -- This clock's steps: the current row (cstep), the reader (rstep), both
-    -- in lock-step (lock, a row >= 1); a flush's last column (flush_ends).
-    cstep      : out   std_logic;
-    rstep      : out   std_logic;
-    lock       : out   std_logic;
-    flush_ends : out   std_logic;
-    -- The current row: a frame's first row, the previous pixel's corner
-    -- bit, its column and row, and its head table bank (the row's parity,
-    -- counted over all frames).
-    first_row : out   std_logic;
-    cm        : out   std_logic;
-    cx        : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    cy        : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
-    cur_bank  : out   std_logic;
-    -- The reader: its bits at rcol - 1 and rcol, its row's last column
-    -- (r_last), rcol = 0, 1, 2 or < 2 (r_col0, r_col1, r_col2, r_slot0), its
-    -- row's head table bank, and the slot the tables are read at, two
-    -- columns ahead of it.
-    pm         : out   std_logic;
-    p0         : out   std_logic;
-    r_last     : out   std_logic;
-    r_col0     : out   std_logic;
-    r_col1     : out   std_logic;
-    r_col2     : out   std_logic;
-    r_slot0    : out   std_logic;
-    r_bank     : out   std_logic;
-    ahead_slot : out   unsigned(slot_bits(MAX_WIDTH) - 1 downto 0)
+    -- This clock's steps and where both sides are (step_t).
+    step : out   step_t(cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                        ahead_slot(slot_bits(MAX_WIDTH) - 1 downto 0))
   );
 end entity fastnms_nms_region_schedule;
 
@@ -144,6 +108,7 @@ architecture rtl of fastnms_nms_region_schedule is
   signal f_prime     : std_logic;
   signal row_next0   : std_logic; -- this clock reads the next row's column 0
   signal holds0      : std_logic; -- the row memory's output is that bit
+  signal ahead_slot  : unsigned(SB - 1 downto 0);
 
 begin
 
@@ -151,23 +116,27 @@ begin
     report "fastnms_nms_region_schedule: MAX_WIDTH must be at least 3"
     severity failure;
 
-  cstep      <= cstep_i;
-  rstep      <= rstep_i;
-  lock       <= lock_i;
-  flush_ends <= flush_go and r_last_r;
-  first_row  <= first_row_r;
-  cm         <= cm_r;
-  cx         <= cx_r;
-  cy         <= cy_r;
-  cur_bank   <= cur_bank_r;
-  pm         <= pm_r;
-  p0         <= p0_r;
-  r_last     <= r_last_r;
-  r_col0     <= r_col0_r;
-  r_col1     <= r_col1_r;
-  r_col2     <= r_col2_r;
-  r_slot0    <= r_slot0_r;
-  r_bank     <= r_bank_r;
+  step <=
+  (
+    cstep      => cstep_i,
+    rstep      => rstep_i,
+    lock       => lock_i,
+    flush_ends => flush_go and r_last_r,
+    first_row  => first_row_r,
+    cm         => cm_r,
+    cx         => cx_r,
+    cy         => cy_r,
+    cur_bank   => cur_bank_r,
+    pm         => pm_r,
+    p0         => p0_r,
+    r_last     => r_last_r,
+    r_col0     => r_col0_r,
+    r_col1     => r_col1_r,
+    r_col2     => r_col2_r,
+    r_slot0    => r_slot0_r,
+    r_bank     => r_bank_r,
+    ahead_slot => ahead_slot
+  );
 
   -- The flush steps whenever the record FIFO has room. The current row steps
   -- with room too; rows >= 1 need the reader free and primed; a first row

@@ -1,24 +1,8 @@
--- The region NMS's run tables and their reads ahead (fastnms_nms_region,
--- docs/fastnms_nms_region.md, Tables): per slot of the previous row's runs
--- (slot = start column / 2), the head table says whether the run is the
--- first of its class in its row (one bank per row parity), the last table
--- whether it is the last, the data table gives a class's best key at its
--- first run's slot (with its area: the data word).
---
--- The reads hide the memories' latency: the head and last words of the
--- slot two columns ahead of the reader are read on every reader step
--- (rstep, ahead_slot) and reach registers by the reader's column, so the
--- control takes the run's bits (run_head, run_last) from registers; the
--- data word is read a clock later, for the same column, with the operation
--- (op's rv and slot), and reaches the key data path as data_word. A read in
--- flight takes the writes to its word that land after it (each read
--- watches its word until the reader takes it). The writes come registered
--- from the key data path (fastnms_nms_region_keys); the previous row's last
--- writes can land as the next row takes their words, and only there (the
--- last bits of slot 0 at columns 0 and 1, the head and last bits of slot 1
--- at column 2): each write's registered flags (_s0, _s1) say so, and the
--- run's bits are then the write's. Simulation asserts that no other write
--- lands on a word being taken.
+-- The region NMS's head, last and data tables, read ahead of the reader so
+-- that the control takes a run's bits from registers; a read in flight
+-- takes the writes that land on its word.
+-- Datasheet: docs/fastnms_nms_region.md
+-- Contract: docs/design/region_nms_pipeline.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -36,49 +20,24 @@ entity fastnms_nms_region_tables is
   port (
     clk : in    std_logic;
     rst : in    std_logic;
-    -- The reader (fastnms_nms_region_schedule): its step, its bits (for the
-    -- assertions), where it is, and the slot it reads ahead.
-    rstep      : in    std_logic;
-    pm         : in    std_logic;
-    p0         : in    std_logic;
-    r_last     : in    std_logic;
-    r_col0     : in    std_logic;
-    r_col1     : in    std_logic;
-    r_col2     : in    std_logic;
-    r_slot0    : in    std_logic;
-    r_bank     : in    std_logic;
-    ahead_slot : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    -- The operation a clock after the control's step: the data word's read.
-    op      : in    std_logic_vector(OP_BITS - 1 downto 0);
-    op_slot : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    -- The writes (registered by the key data path): the data table's, and
-    -- whether it is to slot 0; the head table's (slot & bank), the one
-    -- waiting in its spare register for the next clock, and whether each is
-    -- to slot 1; the last table's (slot & '0'), and whether it is to slot 0
-    -- or 1.
-    data_w_en       : in    std_logic;
-    data_w_slot     : in    unsigned(slot_bits(MAX_WIDTH) - 1 downto 0);
-    data_w_key      : in    unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0);
-    data_w_s0       : in    std_logic;
-    head_w_en       : in    std_logic;
-    head_w_addr     : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
-    head_w_bit      : in    std_logic;
-    head_w_s1       : in    std_logic;
-    head_spare_en   : in    std_logic;
-    head_spare_addr : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
-    head_spare_bit  : in    std_logic;
-    head_spare_s1   : in    std_logic;
-    last_w_en       : in    std_logic;
-    last_w_addr     : in    unsigned(slot_bits(MAX_WIDTH) downto 0);
-    last_w_bit      : in    std_logic;
-    last_w_s0       : in    std_logic;
-    last_w_s1       : in    std_logic;
-    -- The previous-row run at the reader's column: its head bit (a
-    -- register) and its last bit (the register, or the write landing now).
-    run_head : out   std_logic;
-    run_last : out   std_logic;
-    -- The data word of the reader's column, for the operation's clock.
-    data_word : out   unsigned(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)
+    -- The schedule's step (fastnms_nms_region_schedule): the reader's step,
+    -- its bits (for the assertions), where it is, the slot it reads ahead.
+    step : in    step_t(cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                        ahead_slot(slot_bits(MAX_WIDTH) - 1 downto 0));
+    -- The operation a clock after the control's step: the data word's read
+    -- (op.rv, slot).
+    cmd : in    command_t(slot(slot_bits(MAX_WIDTH) - 1 downto 0), score(SCORE_BITS - 1 downto 0),
+                          cx(clog2(MAX_WIDTH) - 1 downto 0), cy(bits_for(MAX_HEIGHT) - 1 downto 0),
+                          ram_wa(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0),
+                          ram_ra(clog2(stack_ram_words(MAX_WIDTH)) - 1 downto 0));
+    -- The writes (registered by the key data path).
+    writes : in    writes_t(data(slot(slot_bits(MAX_WIDTH) - 1 downto 0),
+                                 word(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0)),
+                            head(addr(slot_bits(MAX_WIDTH) downto 0)),
+                            head_spare(addr(slot_bits(MAX_WIDTH) downto 0)),
+                            last(addr(slot_bits(MAX_WIDTH) downto 0)));
+    -- The previous-row run at the reader's column, and the data word.
+    run : out   run_t(data(data_bits(MAX_WIDTH, MAX_HEIGHT, SCORE_BITS) - 1 downto 0))
   );
 end entity fastnms_nms_region_tables;
 
@@ -125,7 +84,7 @@ architecture rtl of fastnms_nms_region_tables is
     w_en   : std_logic;
     w_addr : bit_addr_t;
     w_data : word_t;
-    step   : std_logic;
+    moves  : std_logic;
     ra     : bit_addr_t;
     rdata  : word_t
   ) return ahead_t is
@@ -134,7 +93,7 @@ architecture rtl of fastnms_nms_region_tables is
 
     n := p;
 
-    if step = '1' then
+    if moves = '1' then
       n.addr2 := p.addr1;
       if w_en = '1' and w_addr = p.addr1 then
         n.word2 := w_data;
@@ -175,7 +134,8 @@ architecture rtl of fastnms_nms_region_tables is
   signal head_ahead : ahead_t;
   signal last_ahead : ahead_t;
   -- The head bit of the previous-row run at rcol (the first of its class).
-  signal run_head_r : std_logic;
+  signal run_head_r   : std_logic;
+  signal run_last_now : std_logic;
   -- The last write lands on the word the reader takes now (slot 0 at
   -- columns 0 and 1, slot 1 at column 2).
   signal fwd_last0 : std_logic;
@@ -188,14 +148,13 @@ begin
     report "fastnms_nms_region_tables: MAX_WIDTH must be at least 3"
     severity failure;
 
-  op_r <= to_op(op);
+  op_r <= cmd.op;
 
-  run_head  <= run_head_r;
-  fwd_last0 <= last_w_en and last_w_s0 and r_slot0;
-  fwd_last1 <= last_w_en and last_w_s1 and r_col2;
-  run_last  <= last_w_bit when (fwd_last0 or fwd_last1) = '1' else
-               last_ahead.word2(0);
-  data_word <= unsigned(data_ahead.word2);
+  fwd_last0    <= writes.last.en and writes.last.s0 and step.r_slot0;
+  fwd_last1    <= writes.last.en and writes.last.s1 and step.r_col2;
+  run_last_now <= writes.last.data when (fwd_last0 or fwd_last1) = '1' else
+                  last_ahead.word2(0);
+  run          <= (head => run_head_r, last => run_last_now, data => unsigned(data_ahead.word2));
 
   reads_ahead : process (clk) is
 
@@ -208,70 +167,70 @@ begin
   begin
 
     if rising_edge(clk) then
-      p_start := p0 = '1' and pm = '0';
+      p_start := step.p0 = '1' and step.pm = '0';
 
       -- synthesis translate_off
       if rst = '1' then
         checks_on <= true;
       end if;
       -- The write a registered head bit (run_head_r) took a clock ahead.
-      fwd_head1 := head_w_en = '1' and head_w_s1 = '1' and r_col2 = '1' and
-                   head_w_addr(0) = r_bank;
-      assert not (rstep = '1' and p_start and r_slot0 = '0' and head_w_en = '1' and
-                  head_w_addr = head_ahead.addr2 and not fwd_head1)
+      fwd_head1 := writes.head.en = '1' and writes.head.s1 = '1' and step.r_col2 = '1' and
+                   writes.head.addr(0) = step.r_bank;
+      assert not (step.rstep = '1' and p_start and step.r_slot0 = '0' and writes.head.en = '1' and
+                  writes.head.addr = head_ahead.addr2 and not fwd_head1)
         report "fastnms_nms_region: a head bit written as the reader takes it"
         severity failure;
-      assert not (rstep = '1' and p_start and last_w_en = '1' and
-                  last_w_addr = last_ahead.addr2 and (fwd_last0 or fwd_last1) = '0')
+      assert not (step.rstep = '1' and p_start and writes.last.en = '1' and
+                  writes.last.addr = last_ahead.addr2 and (fwd_last0 or fwd_last1) = '0')
         report "fastnms_nms_region: a last bit written as the reader takes it"
         severity failure;
-      assert not ((fwd_last0 or fwd_last1) = '1' and last_w_addr /= last_ahead.addr2)
+      assert not ((fwd_last0 or fwd_last1) = '1' and writes.last.addr /= last_ahead.addr2)
         report "fastnms_nms_region: last_w_s0 or last_w_s1 out of step"
         severity failure;
-      assert not (fwd_head1 and head_w_addr /= head_ahead.addr2)
+      assert not (fwd_head1 and writes.head.addr /= head_ahead.addr2)
         report "fastnms_nms_region: head_w_s1 out of step"
         severity failure;
       assert not checks_on or rst = '1' or
-             (fwd_head1 and run_head_r = head_w_bit) or
-             (not fwd_head1 and run_head_r = (head_ahead.word2(0) or r_slot0))
+             (fwd_head1 and run_head_r = writes.head.data) or
+             (not fwd_head1 and run_head_r = (head_ahead.word2(0) or step.r_slot0))
         report "fastnms_nms_region: run_head_r out of step"
         severity failure;
-      assert not (op_r.push = '1' and op_r.rv = '1' and data_w_en = '1' and
-                  (data_w_slot & '0') = data_ahead.addr2 and (op_r.r_col0 = '0' or data_w_s0 = '0'))
+      assert not (op_r.push = '1' and op_r.rv = '1' and writes.data.en = '1' and
+                  (writes.data.slot & '0') = data_ahead.addr2 and (op_r.r_col0 = '0' or writes.data.s0 = '0'))
         report "fastnms_nms_region: a key written as the reader takes it"
         severity failure;
       -- synthesis translate_on
 
-      next_head  := ahead_next(head_ahead, head_w_en, head_w_addr, word(head_w_bit),
-                               rstep, ahead_slot & r_bank, word(head_rd(0)));
+      next_head  := ahead_next(head_ahead, writes.head.en, writes.head.addr, word(writes.head.data),
+                               step.rstep, step.ahead_slot & step.r_bank, word(head_rd(0)));
       head_ahead <= next_head;
       -- The head bit of the run the reader takes next, a register: the word
       -- it reads ahead, or the row's first run, or the previous row's last
       -- column's second write (from the spare register: slot 1, taken at
       -- column 2) when it lands as the reader takes that word.
-      next_slot0 := r_slot0;
-      next_col2  := r_col2;
-      if rstep = '1' then
-        next_slot0 := r_last or r_col0;
-        next_col2  := r_col1;
+      next_slot0 := step.r_slot0;
+      next_col2  := step.r_col2;
+      if step.rstep = '1' then
+        next_slot0 := step.r_last or step.r_col0;
+        next_col2  := step.r_col1;
       end if;
       -- The RAM's output is the last input of the choice (one LUT after the
       -- block RAM, whose clock-to-output is long on ECP5).
-      if head_spare_en = '1' and head_spare_s1 = '1' and next_col2 = '1' and
-         head_spare_addr(0) = (r_bank xor (rstep and r_last)) then
-        run_head_r <= head_spare_bit;
+      if writes.head_spare.en = '1' and writes.head_spare.s1 = '1' and next_col2 = '1' and
+         writes.head_spare.addr(0) = (step.r_bank xor (step.rstep and step.r_last)) then
+        run_head_r <= writes.head_spare.data;
       elsif next_slot0 = '1' then
         run_head_r <= '1';
-      elsif rstep = '1' and not (head_w_en = '1' and head_w_addr = head_ahead.addr1) and
+      elsif step.rstep = '1' and not (writes.head.en = '1' and writes.head.addr = head_ahead.addr1) and
             head_ahead.fwd_v = '0' then
         run_head_r <= head_rd(0);
       else
         run_head_r <= next_head.word2(0);
       end if;
-      last_ahead <= ahead_next(last_ahead, last_w_en, last_w_addr, word(last_w_bit),
-                               rstep, ahead_slot & '0', word(last_rd(0)));
-      data_ahead <= ahead_next(data_ahead, data_w_en, data_w_slot & '0', word_t(data_w_key),
-                               op_r.rv, op_slot & '0', data_rd);
+      last_ahead <= ahead_next(last_ahead, writes.last.en, writes.last.addr, word(writes.last.data),
+                               step.rstep, step.ahead_slot & '0', word(last_rd(0)));
+      data_ahead <= ahead_next(data_ahead, writes.data.en, writes.data.slot & '0', word_t(writes.data.word),
+                               op_r.rv, cmd.slot & '0', data_rd);
 
       if rst = '1' then
         run_head_r <= '1';
@@ -286,7 +245,7 @@ begin
   -- The data words' keys in block RAM; their areas (AREA_BITS + 1, the low
   -- bits) in LUT RAM beside them, at the same address and enables: in the
   -- block RAM the areas would take the words past two BRAM18 side by side
-  -- (36 bits) into a third (docs/fastnms_nms_region.md, Memory).
+  -- (36 bits) into a third (docs/design/region_nms_memory.md).
   data_keys : entity work.fastnms_ram_sdp
     generic map (
       DEPTH => SLOTS,
@@ -294,11 +253,11 @@ begin
     )
     port map (
       clk     => clk,
-      wr_en   => data_w_en,
-      wr_addr => resize(data_w_slot, clog2(SLOTS)),
-      wr_data => std_logic_vector(data_w_key(DB - 1 downto AREA_WORD_BITS)),
+      wr_en   => writes.data.en,
+      wr_addr => resize(writes.data.slot, clog2(SLOTS)),
+      wr_data => std_logic_vector(writes.data.word(DB - 1 downto AREA_WORD_BITS)),
       rd_en   => op_r.rv,
-      rd_addr => resize(op_slot, clog2(SLOTS)),
+      rd_addr => resize(cmd.slot, clog2(SLOTS)),
       rd_data => data_rd(DB - 1 downto AREA_WORD_BITS)
     );
 
@@ -310,11 +269,11 @@ begin
     )
     port map (
       clk     => clk,
-      wr_en   => data_w_en,
-      wr_addr => resize(data_w_slot, clog2(SLOTS)),
-      wr_data => std_logic_vector(data_w_key(AREA_WORD_BITS - 1 downto 0)),
+      wr_en   => writes.data.en,
+      wr_addr => resize(writes.data.slot, clog2(SLOTS)),
+      wr_data => std_logic_vector(writes.data.word(AREA_WORD_BITS - 1 downto 0)),
       rd_en   => op_r.rv,
-      rd_addr => resize(op_slot, clog2(SLOTS)),
+      rd_addr => resize(cmd.slot, clog2(SLOTS)),
       rd_data => data_rd(AREA_WORD_BITS - 1 downto 0)
     );
 
@@ -327,11 +286,11 @@ begin
     )
     port map (
       clk     => clk,
-      wr_en   => head_w_en,
-      wr_addr => resize(head_w_addr, clog2(2 * SLOTS)),
-      wr_data => (0 => head_w_bit),
-      rd_en   => rstep,
-      rd_addr => resize(ahead_slot & r_bank, clog2(2 * SLOTS)),
+      wr_en   => writes.head.en,
+      wr_addr => resize(writes.head.addr, clog2(2 * SLOTS)),
+      wr_data => (0 => writes.head.data),
+      rd_en   => step.rstep,
+      rd_addr => resize(step.ahead_slot & step.r_bank, clog2(2 * SLOTS)),
       rd_data => head_rd
     );
 
@@ -343,11 +302,11 @@ begin
     )
     port map (
       clk     => clk,
-      wr_en   => last_w_en,
-      wr_addr => resize(last_w_addr(SB downto 1), clog2(SLOTS)),
-      wr_data => (0 => last_w_bit),
-      rd_en   => rstep,
-      rd_addr => resize(ahead_slot, clog2(SLOTS)),
+      wr_en   => writes.last.en,
+      wr_addr => resize(writes.last.addr(SB downto 1), clog2(SLOTS)),
+      wr_data => (0 => writes.last.data),
+      rd_en   => step.rstep,
+      rd_addr => resize(step.ahead_slot, clog2(SLOTS)),
       rd_data => last_rd
     );
 

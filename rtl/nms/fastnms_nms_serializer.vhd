@@ -1,30 +1,14 @@
--- Beats of PPC pixels in, records out: the survivors of a beat (keep flags,
--- scores, the beat's first column and its row), one record per clock in
--- lane order, then, on a frame's last beat, the end-of-frame record. It lets
--- an NMS that sees PPC pixels per clock keep the core's output interface of
--- one record per clock.
---
--- Input: beats; those without a survivor, an end of frame or a row end are
--- dropped. in_x is the column of pixel 0 of the beat, a multiple of PPC.
--- Output: out_x, out_y, out_score of a survivor with out_eof = '0'; the
--- end-of-frame record has out_eof = '1', out_x, out_y the frame's last pixel
--- (in_x + PPC - 1) and out_score 0. A beat's in_row_end (never with in_eof)
--- gives, after its survivors, a row-end beat: out_row_end = '1', out_eof =
--- '0', out_x, out_y the beat's last pixel, out_score 0.
---
--- Pipeline: a FIFO of DEPTH beats, an output stage that holds one beat and
--- hands out its lanes lowest first (a beat with n records takes n clocks,
--- and the next beat follows without a gap), a skid buffer. in_ready is the
--- FIFO's registered in_ready. While the output is ready, the FIFO fills only
--- when beats bring more than one record per clock; DEPTH sizes that burst
--- (fastnms_nms_3x3: at most two survivors per beat of four pixels, and two
--- rows never more than one record per beat on average).
+-- Beats of PPC pixels' survivors in, one record per clock out, then the
+-- end-of-frame record: an NMS that sees PPC pixels per clock keeps the
+-- core's output of one record per clock.
+-- Datasheet: docs/fastnms_nms_serializer.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
 
 library work;
   use work.fastnms_pkg.all;
+  use work.fastnms_corner_pkg.all;
 
 entity fastnms_nms_serializer is
   generic (
@@ -59,7 +43,9 @@ architecture rtl of fastnms_nms_serializer is
 
   constant LANE_BITS : positive := clog2(PPC);
   constant BEAT_BITS : positive := 2 + Y_BITS + X_BITS + PPC + PPC * SCORE_BITS;
-  constant REC_BITS  : positive := 2 + X_BITS + Y_BITS + SCORE_BITS;
+  constant REC_BITS  : positive := corner_width(X_BITS, Y_BITS, SCORE_BITS);
+
+  subtype corner_rec_t is corner_t(x(X_BITS - 1 downto 0), y(Y_BITS - 1 downto 0), score(SCORE_BITS - 1 downto 0));
 
   -- A beat's records still to hand out: its survivors (bits 0 .. PPC - 1)
   -- and its end of frame or row end (bit PPC), lowest first.
@@ -134,8 +120,10 @@ architecture rtl of fastnms_nms_serializer is
 
   signal rec_valid : std_logic;
   signal rec_ready : std_logic;
-  signal rec_data  : std_logic_vector(REC_BITS - 1 downto 0);
+  signal rec_data  : corner_rec_t;
+  signal rec_word  : std_logic_vector(REC_BITS - 1 downto 0);
   signal rec_out   : std_logic_vector(REC_BITS - 1 downto 0);
+  signal out_rec   : corner_rec_t;
 
 begin
 
@@ -157,9 +145,6 @@ begin
       rst       => rst,
       in_valid  => in_valid and (or in_keep or in_eof or in_row_end),
       in_ready  => in_ready,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => (in_eof or in_row_end) & in_eof & std_logic_vector(in_y) & std_logic_vector(in_x) & in_keep &
                    std_logic_vector(in_scores),
       out_valid => q_valid,
@@ -194,16 +179,20 @@ begin
         rec_valid <= '1';
         item      := lowest(cur_items);
         if item < PPC then
-          rec_data <= "00" & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
-                      std_logic_vector(to_unsigned(item, LANE_BITS)) & std_logic_vector(cur_y) &
-                      std_logic_vector(cur_scores((item + 1) * SCORE_BITS - 1 downto item * SCORE_BITS));
+          rec_data.eof     <= '0';
+          rec_data.row_end <= '0';
+          rec_data.x       <= cur_x(X_BITS - 1 downto LANE_BITS) & to_unsigned(item, LANE_BITS);
+          rec_data.score   <= cur_scores((item + 1) * SCORE_BITS - 1 downto item * SCORE_BITS);
         else
-          rec_data <= cur_eof & not cur_eof & std_logic_vector(cur_x(X_BITS - 1 downto LANE_BITS)) &
-                      (LANE_BITS - 1 downto 0  => '1') & std_logic_vector(cur_y) &
-                      (SCORE_BITS - 1 downto 0 => '0');
+          -- At the beat's last pixel.
+          rec_data.eof     <= cur_eof;
+          rec_data.row_end <= not cur_eof;
+          rec_data.x       <= cur_x(X_BITS - 1 downto LANE_BITS) & to_unsigned(PPC - 1, LANE_BITS);
+          rec_data.score   <= (others => '0');
         end if;
-        cur_items <= rest;
-        cur_last  <= single(rest);
+        rec_data.y <= cur_y;
+        cur_items  <= rest;
+        cur_last   <= single(rest);
         if cur_last = '1' then
           cur_valid <= '0';
         end if;
@@ -227,6 +216,9 @@ begin
 
   end process hand_out;
 
+  -- (A signal: GHDL 2.0's synthesis fails on pack() in a port map.)
+  rec_word <= pack(rec_data);
+
   output_buffer : entity work.fastnms_skid_buffer
     generic map (
       WIDTH => REC_BITS
@@ -236,16 +228,17 @@ begin
       rst       => rst,
       in_valid  => rec_valid,
       in_ready  => rec_ready,
-      in_data   => rec_data,
+      in_data   => rec_word,
       out_valid => out_valid,
       out_ready => out_ready,
       out_data  => rec_out
     );
 
-  out_eof     <= rec_out(REC_BITS - 1);
-  out_row_end <= rec_out(REC_BITS - 2);
-  out_x       <= unsigned(rec_out(REC_BITS - 3 downto Y_BITS + SCORE_BITS));
-  out_y       <= unsigned(rec_out(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS));
-  out_score   <= unsigned(rec_out(SCORE_BITS - 1 downto 0));
+  out_rec     <= unpack(rec_out, X_BITS, Y_BITS, SCORE_BITS);
+  out_eof     <= out_rec.eof;
+  out_row_end <= out_rec.row_end;
+  out_x       <= out_rec.x;
+  out_y       <= out_rec.y;
+  out_score   <= out_rec.score;
 
 end architecture rtl;

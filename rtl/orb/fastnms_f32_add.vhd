@@ -1,19 +1,6 @@
--- IEEE-754 binary32 add, round to nearest even (golden/float32.py, add), one
--- sum per clock, 7 clocks from in_valid to out_valid. A subtraction is an add
--- of the operand with its sign bit flipped.
---
--- Stages: (1) order the operands by magnitude; (2) the exponent difference d,
--- saturated at 26 (larger shifts only feed the sticky bit); (3) align the
--- smaller significand with two guard bits and a sticky bit; (4) add or
--- subtract (27 bits); (5) count the leading zeros; (6) normalise and decide
--- the rounding; (7) pack (a carry out of the significand carries into the
--- exponent).
---
--- Domain (the ORB steps stay inside it, golden/float32.py states why): each
--- operand +-0 or normal, the sum 0 or normal. Exact zeros follow IEEE: -0
--- only for (-0) + (-0). A subnormal operand reads as zero and an out-of-range
--- result wraps: neither can occur in ORB, and assertions report them in
--- simulation.
+-- IEEE-754 binary32 add, round to nearest even (golden/float32.py, add),
+-- one sum per clock, 7 clocks; +-0 and normal operands and results only.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,12 +1,6 @@
--- IEEE-754 binary32 multiply, round to nearest even (golden/float32.py, mul),
--- one product per clock, LATENCY clocks from in_valid to out_valid.
---
--- Domain (the ORB steps stay inside it, golden/float32.py states why): each
--- operand +-0 or normal; a product of normals is normal (biased exponent
--- 1 .. 254 after rounding). Zero operands give a zero with the sign
--- sa xor sb, as IEEE. A subnormal operand reads as zero and an exponent out
--- of range wraps: neither can occur in ORB, and an assertion reports them in
--- simulation.
+-- IEEE-754 binary32 multiply, round to nearest even (golden/float32.py,
+-- mul), one product per clock; +-0 and normal operands and results only.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,5 +1,6 @@
--- What the float32 units (fastnms_f32_mul, fastnms_f32_add, fastnms_orb_angle)
--- share: the domain they handle and the last step of a rounding.
+-- What the float32 units share: their domain check and the last step of a
+-- rounding.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,16 +1,7 @@
--- The exact high half of a 64 x 64-bit unsigned product, floor(a * b / 2**64),
--- or s - floor(a * b / 2**64), on one pipeline: one product per clock, the
--- result 4 clocks after its operands (3 register stages, then the choice of the
--- precomputed group sums, combinational on out_result). The multiplier of
--- fastnms_orb_cos_sin (golden/trig.py's mulhi).
---   1. 12 products of 24 x 17 bits (12 DSP48E1);
---   2. the products side by side in 6 rows, a 6:3 counter per bit and a
---      carry-save step to two rows; for s - mulhi(a, b), s * 2**64 + 2**64 - 1
---      - a b = K + not u + not v + 2 (K = s * 2**64 + 2**64 - 1) with one more
---      carry-save step: s - mulhi(a, b) = floor((K - a b) / 2**64);
---   3. 7-bit block sums with carry-in 0 and 1, joined into groups of 3 blocks;
---   4. the groups' carries select the high 64 bits.
--- At most 4 logic levels between registers (carry chains of 7 bits).
+-- The exact high half of a 64 x 64-bit product, floor(a * b / 2**64), or
+-- s minus it: one product per clock, 4 clocks, on 12 DSP48E1 (the
+-- multiplier of fastnms_orb_cos_sin).
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

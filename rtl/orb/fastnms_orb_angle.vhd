@@ -1,19 +1,7 @@
--- ORB's keypoint orientation from its moments: cv::fastAtan2((float)m01,
--- (float)m10) in degrees, as float32 bits equal to golden/float32.py's
--- fast_atan2 (OpenCV's scalar atan_f32, every step rounded to float32).
---
--- One keypoint at a time (in_ready is high while the unit is idle):
---   1. ax = |m10|, ay = |m01|; c = min / max as a float32: both significands
---      normalised to 24 bits, a restoring division of 26 quotient bits (one per
---      clock), the remainder as the sticky bit, rounded to nearest even
---      (c = +0 when min = 0);
---   2. the polynomial ((((p7 c2 + p5) c2 + p3) c2 + p1) c), c2 = c c, on one
---      float32 multiplier and one adder (fastnms_f32_mul, fastnms_f32_add);
---   3. 90 - a if |m01| > |m10|, then 180 - a if m10 < 0, then 360 - a if m01 < 0.
--- A keypoint takes at most 104 clocks from its input to its result
--- (docs/orb_rtl.md gives the count); the result waits for out_ready.
---
--- Domain: |m01|, |m10| < 2**20 (ORB's moments reach 624 240).
+-- ORB's keypoint orientation from its moments: cv::fastAtan2 in degrees,
+-- float32 bits equal to golden/float32.py's fast_atan2; one keypoint at a
+-- time, at most 104 clocks.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

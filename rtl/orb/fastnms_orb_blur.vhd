@@ -1,21 +1,6 @@
--- ORB's blur of one pixel: OpenCV's bit-exact GaussianBlur(7x7, sigma 2) of an
--- 8-bit image (golden/orb.py, gaussian_blur) at the centre of a 7x7 window,
---   blurred = (sum_i sum_j k_i k_j w(i, j) + 2**15) >> 16,
--- k = 18 34 48 56 48 34 18 (sum 256), away from the image's border (the
--- window wholly inside the frame: ORB samples only pixels 12 or more from each
--- border, where OpenCV's reflected border plays no part).
---
--- The window is fastnms_window's, as the FAST detector takes it (row 0 first,
--- pixel (row, col) in bits (row * 7 + col) * 8 + 7 .. (row * 7 + col) * 8), so
--- the detector's window serves both; one instance per pixel lane.
---
--- The sum is separable: seven vertical passes (one per column), then one
--- horizontal pass, each by fastnms_orb_kernel7 (half the weighted sum, 5
--- stages, 12-bit carry chains at most). The horizontal pass would need 23-bit
--- sums, so each column's half sum V = 256 H + L is split and H and L pass
--- separately: with SH, SL their halves, the blurred value is
--- (256 SH + SL + 2**13) >> 14, added in three stages of short chains
--- (LATENCY 13 clocks of `en`).
+-- ORB's blur of one pixel: OpenCV's bit-exact GaussianBlur(7x7, sigma 2) at
+-- the centre of fastnms_window's 7x7 window, 13 clocks of `en`.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,32 +1,7 @@
--- ORB's cos and sin of its keypoint angle: a = (float)cos(x), b = (float)sin(x)
--- for a float32 angle x in radians, 0 <= x <= 2*pi, as float32 bits equal to
--- golden/trig.py's cos_sin (the correctly rounded values), in integer arithmetic:
---   1. k = round(x / (pi/2)) from 4 comparisons; r = x - k*pi/2 as a sign and a
---      word M, |r| = M * 2**(-t - 64), 2**63 <= M < 2**64, t = 0 .. 26: for k = 0
---      the mantissa; for k >= 1 a 27-bit subtract of a constant A_k, one of 8
---      96-bit constants L, a leading-zero count (a byte, then a bit) and a shift;
---   2. Z = mulhi(M, M) >> 2t (z = r**2 with 64 fraction bits);
---   3. two Horner chains of 9 products: T = S_n - mulhi(Z, T) then Y = mulhi(Z, T)
---      for sin, T = C_n - mulhi(Z, T) then 2**64 - mulhi(Z, T) for cos; then
---      sin|r| = M - mulhi(M, Y), renormalised by one bit at most;
---   4. the rounding to nearest even and the quadrant map; x < 2**-12 gives
---      cos = 1.0 and sin = x.
---
--- mulhi(a, b) = floor(a * b / 2**64), exact, on one pipelined multiplier
--- (fastnms_mulhi64: 12 DSP48E1), 4 clocks from operands to result, one product
--- per clock; the same clocks give S - mulhi(a, b). The two Horner chains are
--- independent and take alternate clocks of the multiplier. At most 4 logic levels
--- between registers (carry chains of 12 bits at most).
---
--- One angle at a time (in_ready is high while the unit is idle). Every angle
--- takes exactly 58 clocks from its input to its result: 7 of reduction, 1 to issue
--- mulhi(M, M), 4 for it, 1 to shift Z, 1 to issue the sine's first product, 4 for
--- each of the sine's 10 (the cosine's 9 take the clocks between them), 3 of
--- rounding and 1 to offer the result (docs/orb_rtl.md); the result waits for
--- out_ready.
---
--- Domain: in_x in 0 .. 0x40C90FDB (the float32 nearest to 2*pi); an assertion
--- of severity error reports an angle outside it in simulation.
+-- ORB's cos and sin of the keypoint angle in radians, correctly rounded
+-- float32 bits equal to golden/trig.py's cos_sin, in integer arithmetic;
+-- one angle at a time, 58 clocks.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

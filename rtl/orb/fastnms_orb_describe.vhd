@@ -1,26 +1,7 @@
--- ORB's orientation and descriptor of one keypoint after another, equal to
--- golden/orb.py's ic_angle and descriptors: the ORB blocks chained.
---
---   plain columns ─► fastnms_orb_moments ─► 2 x fastnms_orb_angle (in turn) ─┬─► angle FIFO ──┐
---                                                                            ▼                │
---        fastnms_f32_mul (degrees to radians) ─► fastnms_orb_cos_sin ─► fastnms_orb_rotate   │
---                                                                            ▼                │
---   blurred columns ─────────────────────────────────────────────► fastnms_orb_sample ─► out ◄┤
---   record (with the last plain column) ─────────────────────────► record FIFO ─────────────┘
---
--- Two column streams, each in keypoint order: the 31 columns dx = -15 .. 15
--- of the unblurred rows -15 .. 15 (the moments' circle), with the keypoint's
--- record (any RECORD_BITS, e.g. x, y and score) taken with the last one; and
--- the 37 columns dx = -18 .. 18 of the blurred rows -18 .. 18 (the patch the
--- points are sampled from). The sampler keeps two patches; a keypoint's
--- points come some 280 clocks after its plain columns, so the blurred columns
--- are taken later, as its banks free: the source reads them from its row
--- buffer then. The record comes back with the angle and descriptor.
---
--- The angle unit takes up to 104 clocks per keypoint, so two work in turn;
--- every other block takes a keypoint within 64 clocks at LANES 8. The
--- radians, OpenCV's angle * (float)(CV_PI/180), are one float32 product.
--- Both readies are functions of registers.
+-- The ORB engine: a keypoint's unblurred and blurred columns in, its angle
+-- and descriptor out (golden/orb.py's ic_angle and descriptors), a keypoint
+-- every 512 / LANES clocks.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -298,9 +279,6 @@ begin
       rst       => rst,
       in_valid  => take and last,
       in_ready  => record_rdy,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => plain_record,
       out_valid => rec_valid,
       out_ready => done,
@@ -319,9 +297,6 @@ begin
       rst       => rst,
       in_valid  => angle_take,
       in_ready  => angle_rdy,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => angle,
       out_valid => ang_valid,
       out_ready => done,

@@ -1,30 +1,7 @@
--- ORB after the budget: keypoint records in, each with its angle and
--- descriptor out, equal to golden/orb.py (ic_angle, descriptors on the
--- blurred image). It keeps the image's last rows (two fastnms_orb_rows: the
--- unblurred rows, HEIGHT 31, and the blurred ones, HEIGHT 37), reads each
--- keypoint's columns out of them once its rows are in, and hands them to
--- fastnms_orb_describe:
---
---   plain pixels ──► rows (31 x SLOTS) ─► columns x - 15 .. x + 15 ─┐
---   blurred pixels ► rows (37 x SLOTS) ─► columns x - 18 .. x + 18 ─┼► fastnms_orb_describe ─► out
---   records ─┬─► plain queue ─► plain sequencer (requests) ──────────┘        ▲
---            └─► blurred queue ─► blurred sequencer (requests) ───────────────┘
---
--- Records: keypoints 31 pixels or more inside the image (ORB's border), a cell
--- row at a time as fastnms_cell_budget hands them over (cell_log: its CELL),
--- any order within a cell row. A sequencer starts a keypoint's requests once
--- its last row is in: the unblurred row y + 15 and the blurred row y + 18
--- complete (the next row started). The two sequencers run apart, because the
--- engine takes a keypoint's blurred columns only as its sampler frees a bank.
---
--- No row is overwritten unread: a stream's ready is low while its next row
--- would overwrite a row from HALF above the first line of the cell row of the
--- oldest keypoint its sequencer has not finished (a register), and at a
--- frame's first pixel until every keypoint of the frame before is read. Both
--- readies are functions of registers. The rows kept, 2 MAX_CELL + 2 HALF per
--- image (2 slots of 31 and of 37 rows at MAX_CELL 16), keep that from ever
--- deadlocking for a CELL up to MAX_CELL (simulation reports a larger one, and
--- a keypoint whose rows were overwritten).
+-- ORB after the budget: the image and its blur in, kept keypoints in, each
+-- with its angle and descriptor out; keeps the rows a keypoint's columns are
+-- read from and never overwrites one unread.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -92,7 +69,7 @@ architecture rtl of fastnms_orb_feed is
 
   -- Rows kept: a cell row's keypoints are read within the next cell row, and
   -- the first ones need HALF rows above it: 2 MAX_CELL + 2 HALF rows, in slots
-  -- of 2 HALF + 1 (docs/orb_rtl.md, *The pipeline*).
+  -- of 2 HALF + 1 (docs/design/orb_rows.md).
   function slots_for (half : positive) return positive is
   begin
 
@@ -203,9 +180,6 @@ begin
         rst       => rst,
         in_valid  => key_valid and key_ready,
         in_ready  => queue_ready(s),
-        in_room2  => open,
-        in_room3  => open,
-        in_spare  => open,
         in_data   => key_record,
         out_valid => queue_valid(s),
         out_ready => queue_pop(s),
@@ -447,9 +421,6 @@ begin
       rst       => rst,
       in_valid  => tag_push,
       in_ready  => tag_room,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => tag_pushed,
       out_valid => tag_valid,
       out_ready => plain_take and to_sl(plain_count = 30),

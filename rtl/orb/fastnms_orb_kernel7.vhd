@@ -1,15 +1,6 @@
--- Half the weighted sum of seven values under ORB's 7-tap Gaussian kernel,
---   out_half = (18 x0 + 34 x1 + 48 x2 + 56 x3 + 48 x4 + 34 x5 + 18 x6) / 2,
--- exact (every tap is even), at most 32 640 for 8-bit values: the vertical
--- and the horizontal pass of fastnms_orb_blur.
---
--- Five register stages under the shared advance enable `en` (LATENCY 5), each
--- add at most 12 bits of carry chain (one LUT and three CARRY4: 4 levels). With
--- p = x0 + x6, q = x1 + x5, r = x2 + x4, c = x3 the half sum is
---   9 p + 17 q + 24 r + 28 c = A + 8 B, A = p + q + 4 c (at most 2 040),
---   B = (p + 2 q) + 3 (r + c) (at most 3 825),
--- and a shifted operand starts its carry chain above its zero bits: A + 8 B is a
--- 12-bit chain from bit 3.
+-- Half the weighted sum of seven values under ORB's 7-tap Gaussian kernel
+-- (18 34 48 56 48 34 18), exact, in 5 stages of short carry chains.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

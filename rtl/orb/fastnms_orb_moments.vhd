@@ -1,22 +1,7 @@
--- ORB's intensity-centroid moments of one keypoint (OpenCV's IC_Angle, as
--- golden/orb.py's moments): m10 = sum u I(u, v), m01 = sum v I(u, v) over the
--- radius-15 circular patch of the unblurred image, |v| <= 15 and
--- |u| <= UMAX(|v|). The patch is the same transposed, so column u holds the
--- rows |v| <= UMAX(|u|).
---
--- The patch arrives as 31 columns, u = -15 .. 15 in order, one column of 31
--- pixels per accepted clock (v = -15 in bits 7 .. 0); 31 consecutive columns
--- are a keypoint (the count restarts with rst). Per column, in 7 stages: the
--- rows outside the circle masked (the mask registered a clock ahead from the
--- count); pair sums q(v) = I(v) + I(-v) and differences d(v) = I(v) - I(-v);
--- the column sum S = I(0) + sum q(v) and the column moment
--- T = sum v d(v) = D0 + 2 D1 + 4 D2 + 8 D3 (Db the sum of the d(v) whose v has
--- bit b set), each as a tree of two-input adds; then u S (one DSP48). m01
--- sums T and m10 sums u S, each in two parts whose carry is added a clock
--- later. The moments leave 10 clocks after a keypoint's last column and wait
--- in the output register for out_ready; in_ready is low while they wait (a
--- keypoint takes 31 columns, more than the pipeline holds, so no result can
--- arrive behind a waiting one).
+-- ORB's intensity-centroid moments m01, m10 of a keypoint's radius-15
+-- circular patch (golden/orb.py's moments), one column of 31 pixels per
+-- clock.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

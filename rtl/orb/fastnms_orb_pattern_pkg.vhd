@@ -1,16 +1,8 @@
--- ORB's sampling pattern: OpenCV's bit_pattern_31_ (modules/features2d/src/orb.cpp,
--- Rublee et al.'s learned pattern for a 31x31 patch), carried as data. Bit i of
--- the descriptor compares the blurred image at the keypoint plus the rotated
--- (x0, y0) with the one at the rotated (x1, y1); entries 4i .. 4i + 3 of
--- ORB_PATTERN are x0, y0, x1, y1. Point p (0 .. 511) is (x, y) = entries 2p,
--- 2p + 1: points 2i and 2i + 1 are the two ends of bit i. Every coordinate lies
--- in -13 .. 12. tb/orb/test_orb_rotate.py checks this table against
--- golden/orb_pattern.py, which cv2.ORB's descriptors prove.
---
--- The order in which the RTL rotates and samples the points, and the square each
--- lane reaches, are those of golden/sample_order.py (its docstring argues the
--- reach): orb_point_at(step, lane, LANES) is the point in a lane at a step,
--- orb_lane_reach(lane, LANES) the largest |x| or |y| its rotated points take.
+-- ORB's sampling pattern, OpenCV's bit_pattern_31_, as data: entries
+-- 4i .. 4i + 3 of ORB_PATTERN are bit i's x0, y0, x1, y1 (each in -13 .. 12),
+-- checked against golden/orb_pattern.py; and the order golden/sample_order.py
+-- gives the points (orb_point_at, orb_lane_reach).
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
 

@@ -1,28 +1,7 @@
--- ORB's rotated sampling pattern: for each keypoint's cos and sin (float32
--- bits), the 512 points of bit_pattern_31_ rotated as OpenCV rotates them,
--- cvRound(fl(fl(px a) - fl(py b))), cvRound(fl(fl(px b) + fl(py a))), equal to
--- golden/float32.py's rotate, LANES points per clock. The method is the fixed
--- point one of golden/rotate_fixed.py:
---   1. table fill, once per keypoint, one k per clock (k = -13 .. 12): the float
---      products fl(k a) and fl(k b) (the 24-bit significand times |k|, rounded
---      to 24 bits, shifted onto a grid of 2**-26, truncated with a sticky bit
---      below 2**-3) into the tables PA = fl(k a) + 1/4, PB = fl(k b) + 1/4 and
---      NB = -fl(k b) + 1/4;
---   2. per point and coordinate, two table reads and fastnms_orb_round_point:
---      x = round(PA[px] + NB[py]), y = round(PB[px] + PA[py]).
--- The tables are double-buffered (two banks), so the fill of the next keypoint
--- (FILL_CLOCKS) overlaps the reading of this one (512 / LANES clocks): a
--- keypoint every max(512 / LANES, FILL_CLOCKS + 1) clocks while out_ready stays
--- high. Each read port is a fastnms_ram_sdp of 64 x 33 bits in distributed RAM,
--- four per lane.
---
--- Output: point orb_point_at(step, l, LANES) in lane l (bits 6 l + 5 .. 6 l of
--- out_dx, out_dy, two's complement, |d| <= 18): the order of
--- golden/sample_order.py, where lanes 2j and 2j + 1 carry the two ends of one
--- bit, the pairs sorted by reach (fastnms_orb_sample's copies). out_first and
--- out_last mark a keypoint's first and last step.
--- Domain: |cos|, |sin| <= 1, each 0 or at least 2**-27 in magnitude (the values
--- fastnms_orb_cos_sin gives); simulation reports anything else.
+-- ORB's rotated sampling pattern: a keypoint's cos and sin in, its 512
+-- points rotated as OpenCV rotates them out (golden/float32.py's rotate),
+-- LANES per clock, by the fixed-point method of golden/rotate_fixed.py.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,18 +1,6 @@
--- One coordinate of a rotated pattern point: cvRound of ORB's float32 rotation
--- (float32.rotate) from two entries of fastnms_orb_rotate's product tables, by
--- the fixed-point method of golden/rotate_fixed.py (round_point):
---   T = a + b = x + 1/2 on a grid of 2**-26, with the sticky bits ORed;
---   n = floor(T); g = T - n;
---   near below (g <= 2**p_low, the equality only without sticky bits) or near
---   above (g >= 1 - 2**p_high) a half-integer h, with 2**p the half ulp of h's
---   binade, moves an odd n to its even neighbour: the float rounding of x lands
---   on h, and cvRound takes h to even.
--- The 32-bit add is split into 12-, 12- and 8-bit pieces over three clocks (the
--- carries registered), so that no carry chain is longer than 12 bits.
---
--- in_a, in_b: bit 32 the sticky bit, bits 31 .. 0 the entry in two's complement.
--- out_point: the coordinate, LATENCY clocks after the entries, every stage
--- enabled by en.
+-- One coordinate of a rotated pattern point from two entries of
+-- fastnms_orb_rotate's tables (golden/rotate_fixed.py, round_point).
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,25 +1,6 @@
--- The rows an ORB keypoint's columns are read from: the last HEIGHT * SLOTS
--- image rows of up to MAX_WIDTH pixels (8 bits), written one pixel per clock,
--- and read as columns of HEIGHT consecutive rows at any column, one column
--- per clock: what fastnms_orb_describe takes (HEIGHT 31 for the unblurred
--- image, 37 for the blurred one).
---
--- Rows are numbered physically 0 .. HEIGHT * SLOTS - 1, in turn: the first
--- row of a frame is row 0, and row_index is the row being written. Physical
--- row p lives in memory p mod HEIGHT, at slot p / HEIGHT, so HEIGHT
--- consecutive rows are one row in each of the HEIGHT memories: every memory
--- reads once per column. Memory m then holds row (m - top) mod HEIGHT of
--- the column, so the column is rotated back by top mod HEIGHT.
---
--- A column request names its column x and its top row (a physical row);
--- its rows must have been written and not overwritten yet (the caller's
--- schedule; a row is overwritten HEIGHT * SLOTS rows later). One request a
--- clock; a column is offered 11 clocks after its request was taken (the
--- request and the addresses registered, the block RAM's two clocks, three of
--- rotation, four through the FIFO) and waits in a FIFO of 16. rd_ready counts
--- the requests in flight and in the FIFO, so a request is taken only when
--- its column has room: a function of registers. A pixel is written two
--- clocks after it arrives.
+-- The last HEIGHT * SLOTS image rows, written one pixel per clock and read
+-- as columns of HEIGHT rows at any x, one column per clock.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -419,9 +400,6 @@ begin
       rst       => rst,
       in_valid  => valid(LATENCY),
       in_ready  => fifo_ready,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => column,
       out_valid => out_valid_i,
       out_ready => out_ready,

@@ -1,30 +1,7 @@
--- ORB's 256 comparisons (golden/orb.py's descriptors): from a keypoint's
--- blurred patch and its rotated pattern points, the 256-bit descriptor, bit i
--- '1' when the blurred pixel at pair i's first point is below the one at its
--- second (out_descriptor bit i: byte i / 8, bit i mod 8, as OpenCV packs it).
---
--- Two inputs, both in keypoint order:
---   * the patch: 37 columns dx = -18 .. 18 of the 37 blurred pixels
---     dy = -18 .. 18 around the keypoint, one column per accepted clock (row dy
---     in bits 8 (dy + 18) + 7 .. 8 (dy + 18) of patch_column);
---   * the points: fastnms_orb_rotate's steps, LANES points per step in the
---     order of golden/sample_order.py (orb_point_at): lanes 2j and 2j + 1 carry
---     the two ends of one bit, the pairs sorted by the square they can reach.
---
--- Each lane has its own copy of the patch, one word per column, cut to the
--- square its points reach at any angle (orb_lane_reach: 10, 13, 14 and 18
--- pixels at LANES 8), so every lane reads on every clock with no conflict.
--- The copies are double-buffered: the next keypoint's patch is written while
--- this one's points are read. Per step, 5 stages: the points' columns and rows
--- registered (the column is the copy's address); the column word read; the row
--- chosen within groups of 8 rows; the pixel; each pair's comparison. A
--- pair-lane shifts its bits into a register of 512 / LANES bits; a keypoint's
--- last step loads the descriptor, 5 clocks after that step was taken, and it
--- waits there for out_ready.
---
--- patch_ready is low while the copy being written holds a patch not read yet;
--- point_ready is low until the keypoint's patch is complete, and at a
--- keypoint's last step while a descriptor waits: both functions of registers.
+-- ORB's 256 comparisons (golden/orb.py's descriptors): a keypoint's blurred
+-- patch and rotated points in, its descriptor out, LANES points per clock
+-- from a private patch copy per lane.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

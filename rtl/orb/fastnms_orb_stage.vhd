@@ -1,28 +1,7 @@
--- ORB in the core: the budget's records in, each keypoint's record with its
--- angle and descriptor out, then the frame's end-of-frame beat.
---
---   records ─► queue (a cell row of records) ─► fastnms_orb_feed ─► out
---   image + blurred image (one stream) ───────► fastnms_orb_feed     ▲
---   end of frame ─── waits until every record has left ──────────────┘
---
--- The queue holds a whole cell row's kept records (ceil(MAX_WIDTH / 16) x
--- MAX_PER_CELL, the most with CELL 16). Without it the core could deadlock on
--- dense content: while the feed waits for the rows below a cell row's last
--- line, the budget, its drain stalled, would hold the record stream, and so
--- the detector that brings those rows. With it the budget's drain of a cell
--- row always ends: by the time the budget needs that bank again, every
--- record the feed can read has been read, and the rest of the row fits in
--- the queue (docs/orb_rtl.md, *In the core*).
---
--- With cfg_drop (the budget off, K = 0) records come in raster order as the
--- NMS finds them and nothing bounds them: a record that finds the queue full
--- is dropped (`dropped` pulses) instead of holding the stream.
---
--- Records in: keypoints 31 pixels or more inside the frame, as
--- fastnms_orb_feed takes them; in_eof the end-of-frame beat (its x, y kept).
--- Out: the records in the feed's order, out_eof = '0', then the end-of-frame
--- beat (out_eof = '1', angle and descriptor 0). cfg_cell_log and cfg_drop
--- hold for a frame (the core takes one frame at a time through ORB).
+-- ORB in the core: the budget's records in, each with its angle and
+-- descriptor out, then the frame's end-of-frame beat; a queue of a cell
+-- row's records in front of fastnms_orb_feed.
+-- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -136,9 +115,6 @@ begin
       rst       => rst,
       in_valid  => push,
       in_ready  => q_ready,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => open,
       in_data   => std_logic_vector(in_x) & std_logic_vector(in_y) & std_logic_vector(in_score),
       out_valid => q_valid,
       out_ready => key_ready,

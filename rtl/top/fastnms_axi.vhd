@@ -1,30 +1,7 @@
--- fastnms_axi: the drop-in top level. AXI4-Stream video in, corner records
--- out, optional per-pixel score video out, AXI4-Lite control. See docs/fastnms_axi.md.
---
---   s_axis_video ─► skid ─► gate ─► skid ─► fastnms_core ─► records ─► m_axis_corners
---                                     │          │  └ tap ─► skid ─► (sat) ─► m_axis_score
---                           check ◄──┘
---                             │   s_axi_ctrl ─► regs ─► interrupt
---                             └─────► (errors)
---
--- The entity declaration is VHDL-93 (std_logic ports, plain generics) for
--- Vivado's IP packager; the interface attributes sit in the entity's
--- declarative part, where the LRM (and GHDL) want port attributes.
---
--- PPC pixels per clock (1, 2 or 4) on s_axis_video and m_axis_score, packed
--- as UG934 does (pixel 0 of a beat in the low byte); PPC > 1 needs NMS "3x3"
--- or "none".
---
--- DESCRIPTOR "orb" (PPC 1, NMS "3x3" or "none", MAX_PER_CELL > 0): each
--- keypoint's record carries its ORB angle and descriptor (record format 2:
--- REC_ORB_BEATS beats, fastnms_record_output); ORB_MAX_CELL is the largest
--- BUDGET.CELL (it sizes the core's ORB rows).
---
--- aresetn is synchronous to aclk (Vivado's proc_sys_reset drives it). It is
--- registered twice more before it resets the control state, but every VALID
--- and READY of the top is low from the first clock edge at which aresetn is
--- sampled low (a mask register, `ports_on`) until the internal reset is over.
--- Hold aresetn low for at least 4 clocks (AMD IPs ask for 16).
+-- The drop-in top level: AXI4-Stream video in, corner records out, optional
+-- per-pixel score video out, AXI4-Lite control, interrupt; fastnms_core
+-- inside.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

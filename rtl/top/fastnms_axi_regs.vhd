@@ -1,35 +1,8 @@
 -- The register file of fastnms_axi (the map is fastnms_regs_pkg, generated
--- from rtl/top/fastnms_regs.toml; see docs/fastnms_axi.md). The AXI4-Lite
--- protocol is fastnms_axil_slave's: this file sees one access at a time.
---
--- Writes: wr_en with the word index, data and byte strobes; the write takes
--- effect four clocks later, when wr_done pulses (decode, merge of the bytes
--- not strobed, the two clamping steps). Byte strobes are honoured: a byte whose
--- strobe is 0 keeps its value (rw) or has no effect (w1c, w1p, wo). Writes to
--- read-only registers change nothing. Reads: rd_done and rd_data one clock
--- after rd_en.
---
--- Configuration: THRESHOLD, WIDTH, HEIGHT, BUDGET and MIN_AREA are written into shadow
--- registers; the core's values (cfg_*) take them on the clock cfg_apply is
--- high (a start-of-frame pixel accepted at s_axis_video), so a frame takes
--- the values written before its first pixel is accepted, and the input never
--- waits for them. WIDTH and HEIGHT writes are clamped to MIN_WIDTH .. MAX_WIDTH
--- and 7 .. MAX_HEIGHT, WIDTH then rounded down to a multiple of PPC (MIN_WIDTH:
--- 7 with one pixel per clock, 8 with 2 or 4, the narrowest frame of
--- fastnms_window). BUDGET.PER_CELL is clamped to MAX_PER_CELL, BUDGET.CELL
--- to 16 .. 256 and rounded down to a power of two (kept as log2(CELL) - 4),
--- then (DESCRIPTOR "orb") to ORB_MAX_CELL rounded up to a power of two, the
--- largest cell the core's ORB rows are sized for.
---
--- Commands (CMD) act only with KEY = 0x5A in the same write.
---
--- Status: the sticky STATUS bits are set by one-clock event pulses and
--- cleared by writing 1. out_record / out_last pulse on the handshakes of
--- m_axis_corners (a record that is not EMPTY / a record with tlast);
--- three clocks after the pulse of a last record, CORNER_COUNT and FRAME_COUNT
--- take their new values and FRAME_DONE is set. DROPPED and INPUT_STALLS count
--- the pulses of evt_dropped and evt_stall. interrupt = IRQ_ENABLE and
--- FRAME_DONE, registered.
+-- from rtl/top/fastnms_regs.toml): one access at a time from
+-- fastnms_axil_slave, the per-frame configuration, status, counters and the
+-- interrupt.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

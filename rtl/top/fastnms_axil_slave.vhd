@@ -1,18 +1,6 @@
--- AXI4-Lite slave: the protocol only. It turns the five channels into one
--- register access at a time for a register file (fastnms_axi_regs):
---   a write: wr_en pulses with wr_index (the word index), wr_data and wr_strb;
---     the register file answers with a wr_done pulse (one clock or more later);
---   a read: rd_en pulses with rd_index; the file answers with rd_done and
---     rd_data (one clock or more later).
--- Addresses are fully decoded: a word index below WORDS is mapped; any other
--- address answers SLVERR (a read with data 0) without reaching the register
--- file. No address aliases another inside the ADDR_WIDTH space.
---
--- One write and one read in flight; the address and data of a write are taken
--- in any order, each behind a registered ready. AWPROT/ARPROT are ignored.
---
--- active = '0' (the top's reset, from the first clock edge at which aresetn is
--- sampled low): every ready and valid is low and no handshake happens.
+-- AXI4-Lite slave, the protocol only: the five channels turned into one
+-- register access at a time, addresses decoded in full.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

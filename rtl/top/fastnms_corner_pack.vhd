@@ -1,23 +1,7 @@
--- Corner records with the end of frame folded in: fastnms_core gives each
--- frame's records, then a separate end-of-frame beat; this block holds the
--- latest record back until it knows what follows it, and sends
---   a record followed by another record     with KIND_RECORD,
---   a record followed by the end of frame   with KIND_LAST,
---   an end of frame with no record before   as KIND_EMPTY (x, y, score 0).
--- So every frame ends with exactly one record marked last, and no record is
--- lost or repeated. One record per clock in and out.
---
--- abort (a soft reset in progress; the core is held in reset and its output
--- is ignored) closes the frame instead: a held record leaves as KIND_ABORTED.
--- open_frame is '1' while a record is held (so while abort must be kept).
---
--- in_extra (EXTRA_BITS) rides with each record (fastnms_axi: the ORB angle
--- and descriptor; zero on the EMPTY record). in_lost, taken with the
--- end-of-frame beat, says that records of the frame were lost upstream; it
--- leaves with the frame's LAST or EMPTY record.
---
--- out_data is kind & lost & x & y & score & extra. Ready paths: in_ready is
--- the output skid buffer's registered ready (gated by abort, a register).
+-- Corner records with the end of frame folded in: each record held until
+-- the next beat says whether it is its frame's last (record, last, empty,
+-- aborted).
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,12 +1,6 @@
--- A corner record as beats of m_axis_corners: the record in_data is BEATS
--- words of 64 bits (beat 0 in the low word) sent in order, or its beat 0
--- alone when in_single (the EMPTY record). out_last is set on the final beat
--- of a record with in_last (the frame's last record), so a frame stays one
--- AXI4-Stream packet. The record is taken (in_ready) with the handshake of
--- its final beat; with BEATS = 1 every beat is a whole record.
---
--- No register on the data: out_data is a BEATS-to-1 select of in_data by
--- the beat counter; in_ready is out_ready and a register.
+-- A corner record as BEATS 64-bit beats of m_axis_corners (its beat 0 alone
+-- for the EMPTY record), tlast on a frame's last beat.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,15 +1,6 @@
--- fastnms_record_output: the core's keypoints as m_axis_corners records.
--- See docs/fastnms_axi.md (Corner records, record format 2).
---
---   core ─► pack ─► (LIVE: drop a record that does not fit) ─► FIFO ─► beats ─► out
---
--- The packer folds the core's end-of-frame beat into the records (LAST,
--- EMPTY, ABORTED); the FIFO holds whole records (288 bits more with ORB);
--- the beat serializer sends one beat, or REC_ORB_BEATS with ORB. With
--- live = '0' every record waits for room; with live = '1' the core is never
--- held and records that do not fit are dropped, counted (dropped) and
--- flagged (OVERFLOW on their frame's last record). With AREA (the region
--- NMS) each record carries in_area in its AREA field.
+-- The core's keypoints as m_axis_corners records: pack, the CTRL.LIVE drop
+-- policy and its accounting, the corner FIFO, the beats.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
@@ -96,6 +87,10 @@ architecture rtl of fastnms_record_output is
   constant PACKED_BITS : positive := 3 + FIELD_BITS + EXTRA_BITS;
   constant FIFO_BITS   : positive := 3 + FIELD_BITS + PAYLOAD_BITS;
   constant BEATS       : positive := record_beats;
+  -- The FIFO's RAM words, all asked for; almost_full = '0' promises room for
+  -- this record and one more whenever it comes (fastnms_fifo: R - 1 = 2).
+  constant FIFO_RAM_WORDS : positive := fifo_words(FIFO_DEPTH);
+  constant SPARE_LEVEL    : positive := maximum(1, FIFO_RAM_WORDS - 5);
 
   signal k_ready   : std_logic;
   signal k_extra   : std_logic_vector(EXTRA_BITS - 1 downto 0);
@@ -112,7 +107,7 @@ architecture rtl of fastnms_record_output is
   signal p_over  : std_logic;
   signal q_valid : std_logic;
   signal q_ready : std_logic;
-  signal q_spare : std_logic;
+  signal q_full  : std_logic;                     -- almost full: no spare word
   signal q_fits  : std_logic;
   signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
   signal drop    : std_logic;
@@ -213,7 +208,7 @@ begin
 
   -- live = '0': every record waits for room. live = '1': the packer is never
   -- stalled; a record that does not fit is dropped. A frame's last record
-  -- needs q_ready, any other record q_spare (room for it and for a last
+  -- needs q_ready, any other record a spare word (room for it and for a last
   -- record whenever it comes), so the last record of a frame whose records
   -- were dropped still finds a word unless that frame's last record came
   -- after another frame's had taken the spare word; it carries OVERFLOW for
@@ -223,7 +218,7 @@ begin
   p_lost  <= p_data(PACKED_BITS - 3);
   p_last  <= p_kind(1) or p_kind(0);
   q_fits  <= q_ready when p_last = '1' else
-             q_spare;
+             not q_full;
   p_ready <= '1' when live = '1' else
              q_ready;
   q_valid <= p_valid and (q_fits or not live);
@@ -286,22 +281,21 @@ begin
 
   fifo : entity work.fastnms_fifo
     generic map (
-      DEPTH => FIFO_DEPTH,
-      WIDTH => FIFO_BITS
+      DEPTH             => FIFO_RAM_WORDS,
+      WIDTH             => FIFO_BITS,
+      ALMOST_FULL_LEVEL => SPARE_LEVEL
     )
     port map (
-      clk       => clk,
-      rst       => rst,
-      in_valid  => q_valid,
-      in_ready  => q_ready,
-      in_room2  => open,
-      in_room3  => open,
-      in_spare  => q_spare,
-      in_data   => q_data,
-      out_valid => f_valid,
-      out_ready => f_ready,
-      out_data  => f_data,
-      busy      => f_busy
+      clk         => clk,
+      rst         => rst,
+      in_valid    => q_valid,
+      in_ready    => q_ready,
+      almost_full => q_full,
+      in_data     => q_data,
+      out_valid   => f_valid,
+      out_ready   => f_ready,
+      out_data    => f_data,
+      busy        => f_busy
     );
 
   busy <= p_open or f_busy;

@@ -44,7 +44,7 @@ package fastnms_regs_pkg is
   constant VERSION_PATCH_RESET : std_logic_vector(7 downto 0) := x"00";
   constant VERSION_MINOR_LSB   : natural                      := 8;
   constant VERSION_MINOR_WIDTH : positive                     := 8;
-  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"06";
+  constant VERSION_MINOR_RESET : std_logic_vector(7 downto 0) := x"02";
   constant VERSION_MAJOR_LSB   : natural                      := 16;
   constant VERSION_MAJOR_WIDTH : positive                     := 8;
   constant VERSION_MAJOR_RESET : std_logic_vector(7 downto 0) := x"00";

@@ -1,23 +1,6 @@
--- Input checker: watches the beats (PPC pixels each) that enter fastnms_core
--- and classifies malformed video (AXI4-Stream video, AMD UG934: tuser on the
--- first beat of a frame, tlast on the last beat of each line) against the
--- frame size in use, a line being WIDTH / PPC beats (WIDTH is a multiple of
--- PPC: the register file rounds it). It only observes; the core recovers by
--- itself (fastnms_window). Below, a "pixel" is a beat.
---
--- Lines are delimited by tlast and frames by tuser and the line count, so
--- one bad line is reported once and does not shift the following ones:
---   err_eol_early   tlast before the WIDTH-th pixel of a line
---   err_eol_late    no tlast on the WIDTH-th pixel of a line (the line then
---                   runs until its tlast)
---   err_sof_missing a pixel outside any frame: a frame whose first pixel has
---                   no tuser, or pixels after the HEIGHT-th line
---   err_sof_early   tuser inside a frame (it starts a new frame)
--- Each is a one-clock pulse, two clocks after the pixel. in_frame is '1'
--- from a start of frame to the end of its HEIGHT-th line.
---
--- cfg_width and cfg_height (7 .. MAX_*) must be stable from two clocks
--- before a start-of-frame pixel to one clock after it, as the core needs.
+-- Input checker: classifies the malformed video that enters fastnms_core
+-- against the frame size in use (the STATUS error bits); it only observes.
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

@@ -1,20 +1,6 @@
--- The gate between the video input and fastnms_core: it decides at each start
--- of frame whether the frame is processed.
---
--- At a pixel with sof:
---   enable = '0'          the pixel is dropped and the gate discards every
---                         pixel up to the next start of frame;
---   otherwise             the pixel passes, and so does the rest of the frame.
--- (The configuration is not the gate's: the register file applies it when the
--- frame's first pixel is accepted at the top's input, two clocks at least
--- before that pixel reaches the core, and nothing waits for it.)
--- While discarding, pixels are consumed and dropped. soft (a soft reset in
--- progress) blocks the input and clears the output register; afterwards the
--- gate discards up to the next start of frame. After rst it passes everything
--- (the core itself drops pixels outside frames).
---
--- Registered readies: in_ready depends on registers only, and the output is a
--- skid buffer.
+-- The gate between the video input and fastnms_core: at each start of frame,
+-- process the frame or discard it (CTRL.ENABLE = 0, after a soft reset).
+-- Datasheet: docs/fastnms_axi.md
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

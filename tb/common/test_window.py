@@ -2,7 +2,9 @@
 
 import pytest
 
-from tb.harness import run_cocotb
+from tb.harness import cocotb_tests, run_cocotb
+
+CASES = cocotb_tests("window_tb")
 
 SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 20, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 1}
 ODD_LAT2 = {"MAX_WIDTH": 37, "MAX_HEIGHT": 4095, "WINDOW": 7, "DATA_WIDTH": 8, "READ_LATENCY": 2}
@@ -12,22 +14,26 @@ WINDOW3 = {"MAX_WIDTH": 16, "MAX_HEIGHT": 16, "WINDOW": 3, "DATA_WIDTH": 9, "REA
 @pytest.mark.parametrize(
     ("idle", "stall"), [(0.0, 0.0), (0.3, 0.0), (0.0, 0.3), (0.4, 0.4)], ids=str
 )
-def test_window_small(request, idle, stall):
+@pytest.mark.parametrize("case", CASES)
+def test_window_small(request, idle, stall, case):
     run_cocotb(
         "fastnms_window",
         "window_tb",
         SMALL,
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
 
 
 @pytest.mark.parametrize("generics", [ODD_LAT2, WINDOW3], ids=["w37_lat2", "win3"])
-def test_window_generics(request, generics):
+@pytest.mark.parametrize("case", CASES)
+def test_window_generics(request, generics, case):
     run_cocotb(
         "fastnms_window",
         "window_tb",
         generics,
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": "0.3", "TB_STALL": "0.3"},
     )
@@ -73,11 +79,13 @@ PPC_SETS = {
 
 @pytest.mark.parametrize("name", sorted(PPC_SETS))
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
-def test_window_ppc(request, name, idle, stall):
+@pytest.mark.parametrize("case", CASES)
+def test_window_ppc(request, name, idle, stall, case):
     run_cocotb(
         "fastnms_window",
         "window_tb",
         PPC_SETS[name],
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )

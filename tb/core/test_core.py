@@ -23,13 +23,14 @@ CONFIGS = [
 ]
 
 
+@pytest.mark.parametrize("case", ["generated_images", "malformed_then_good", "region_filter"])
 @pytest.mark.parametrize(("score", "nms"), CONFIGS)
-def test_core_generated(request, score, nms):
+def test_core_generated(request, score, nms, case):
     run_cocotb(
         "fastnms_core",
         "core_tb",
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="generated_images,malformed_then_good,region_filter",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )
@@ -81,8 +82,9 @@ PPC_CONFIGS = [
 ]
 
 
+@pytest.mark.parametrize("case", ["generated_images", "malformed_then_good", "real_images"])
 @pytest.mark.parametrize(("score", "nms", "ppc"), PPC_CONFIGS)
-def test_core_ppc(request, score, nms, ppc):
+def test_core_ppc(request, score, nms, ppc, case):
     """Detector + 3x3 NMS or none with 2 and 4 pixels per beat: generated
     images (noise at threshold 0 among them), malformed frames (widths that
     are not whole beats among them), and photograph crops, against the golden
@@ -92,7 +94,7 @@ def test_core_ppc(request, score, nms, ppc):
         "fastnms_core",
         "core_tb",
         {**generics, "SCORE": score, "NMS": nms, "PPC": ppc},
-        testcase="generated_images,malformed_then_good,real_images",
+        testcase=case,
         name=request.node.nodeid,
         env={
             "TB_IDLE": "0.1",
@@ -125,6 +127,7 @@ def test_core_orb(request, generics, frames):
         "fastnms_core",
         "core_orb_tb",
         {**ORB_GENERICS, **generics},
+        testcase="equals_the_model",
         name=request.node.nodeid,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2", "TB_FRAMES": frames},
     )

@@ -11,36 +11,42 @@ SMALL = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 1}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 4095, "READ_LATENCY": 2}
 
 
+GENERATED = ["generated_images", "throughput"]
+
+
+@pytest.mark.parametrize("case", GENERATED)
 @pytest.mark.parametrize("score", ["opencv", "sad"])
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
-def test_detector_generated(request, score, idle, stall):
+def test_detector_generated(request, score, idle, stall, case):
     run_cocotb(
         "fastnms_fast_detector",
         "detector_tb",
         {**SMALL, "SCORE": score},
-        testcase="generated_images,throughput",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
 
 
+@pytest.mark.parametrize("case", GENERATED)
 @pytest.mark.parametrize("score", ["opencv", "sad"])
-def test_detector_pixels(request, score):
+def test_detector_pixels(request, score, case):
     """PIXELS (ORB's images): every pixel and its blur, with the scores, on generated
     frames and one photograph crop, and the clock count with the score waiting for the blur."""
     run_cocotb(
         "fastnms_fast_detector",
         "detector_tb",
         {**SMALL, "MAX_WIDTH": 48, "SCORE": score, "PIXELS": True},
-        testcase="generated_images,throughput",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.2"},
     )
 
 
+@pytest.mark.parametrize("case", GENERATED)
 @pytest.mark.parametrize("ppc", [2, 4])
 @pytest.mark.parametrize("score", ["opencv", "sad"])
-def test_detector_ppc(request, score, ppc):
+def test_detector_ppc(request, score, ppc, case):
     """Beats of 2 and 4 pixels: generated images with idles and back-pressure,
     and the clock count of back-to-back frames."""
     generics = {"MAX_WIDTH": 24, "MAX_HEIGHT": 32, "READ_LATENCY": 2 if ppc == 4 else 1}
@@ -48,7 +54,7 @@ def test_detector_ppc(request, score, ppc):
         "fastnms_fast_detector",
         "detector_tb",
         {**generics, "SCORE": score, "PPC": ppc},
-        testcase="generated_images,throughput",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.2"},
     )

@@ -8,7 +8,7 @@ output, a stream (a pixel offered is held until px_valid and px_ready meet
 at an edge; px_width is the frame's width on its first pixel and a random
 width, as cfg_width for a later frame can be, on the others; while px_valid
 is low the pixel fields are random); rec_room is the record FIFO's
-in_room3, here random (periods without room). Frames are 3 .. MAX_WIDTH
+not almost_full, here random (periods without room). Frames are 3 .. MAX_WIDTH
 wide and 1 .. a few rows tall, with random corner bits; rst is synchronous
 (the skid buffer drops its pixel from the reset's second clock).
 

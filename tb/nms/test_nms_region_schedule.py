@@ -1,11 +1,17 @@
-"""pytest entry: fastnms_nms_region_schedule alone under GHDL against a model
-of its contract (tb/nms/region_schedule_tb.py): small builds (MAX_WIDTH 16
-and an odd 13, so that rows wrap, frames change width and flushes overlap
-often) and a wide one (1920) with short and full-width rows."""
+"""pytest entry: fastnms_nms_region_schedule alone under GHDL (through a wrapper
+with flat ports, tb/nms/vhdl/) against a model of its contract
+(tb/nms/region_schedule_tb.py): small builds (MAX_WIDTH 16 and an odd 13, so
+that rows wrap, frames change width and flushes overlap often) and a wide one
+(1920) with short and full-width rows."""
+
+from pathlib import Path
 
 import pytest
 
 from tb.harness import run_cocotb
+
+# The part with flat ports (GHDL's VPI does not show record ports).
+FLAT = Path(__file__).with_name("vhdl") / "fastnms_nms_region_schedule_flat.vhd"
 
 
 @pytest.mark.parametrize(
@@ -22,9 +28,10 @@ from tb.harness import run_cocotb
 )
 def test_nms_region_schedule(request, generics, env):
     run_cocotb(
-        "fastnms_nms_region_schedule",
+        "fastnms_nms_region_schedule_flat",
         "region_schedule_tb",
         generics,
         name=request.node.nodeid,
+        extra_sources=(FLAT,),
         env=env,
     )

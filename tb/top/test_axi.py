@@ -1,7 +1,12 @@
-"""pytest entry: fastnms_axi, the AXI top level (tb/top/axi_tb.py)."""
+"""pytest entry: fastnms_axi, the AXI top level, under cocotb (tb/top/axi_*_tb.py).
+
+Each cocotb test is a pytest item of its own, `<configuration>-<cocotb test>`:
+`pytest "tb/top/test_axi.py::test_axi_robustness[opencv-3x3-live_mode]"` runs that one
+test alone, with the seed of its node id (tb/harness.py)."""
 
 from __future__ import annotations
 
+import ast
 import importlib.util
 import json
 import subprocess
@@ -15,6 +20,72 @@ from fastnms.testing import images as testimages
 from tb.harness import run_cocotb
 
 REPO = Path(__file__).resolve().parents[2]
+
+# The cocotb module that holds each cocotb test of the top.
+MODULE = {
+    **dict.fromkeys(["registers", "registers_random"], "axi_registers_tb"),
+    **dict.fromkeys(
+        [
+            "generated_frames",
+            "region_filter",
+            "real_images",
+            "empty_frame",
+            "score_video",
+            "throughput",
+        ],
+        "axi_frames_tb",
+    ),
+    **dict.fromkeys(
+        [
+            "malformed_then_good",
+            "reset_mid_frame",
+            "interrupt_and_enable",
+            "fifo_full",
+            "valids_low_in_reset",
+        ],
+        "axi_robustness_tb",
+    ),
+    **dict.fromkeys(["live_mode", "live_config_writes"], "axi_live_tb"),
+    "budget_frames": "axi_budget_tb",
+}
+
+
+def each(configs: list, testcases: list[str]) -> list:
+    """Every configuration (a pytest.param with an id) with every cocotb test: one pytest
+    item each, id `<configuration>-<test>`, with the configuration's marks (slow)."""
+    return [
+        pytest.param(*c.values, test, id=f"{c.id}-{test}", marks=c.marks)
+        for c in configs
+        for test in testcases
+    ]
+
+
+def test_axi_modules():
+    """MODULE names every cocotb test of tb/top/axi_*_tb.py (axi_orb_tb's aside, run
+    whole by test_axi_orb) with the module that holds it (no simulation)."""
+    found = {}
+    for path in sorted(Path(__file__).parent.glob("axi_*_tb.py")):
+        if path.stem == "axi_orb_tb":
+            continue
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, ast.AsyncFunctionDef) and any(
+                ast.unparse(d).startswith("cocotb.test") for d in node.decorator_list
+            ):
+                found[node.name] = path.stem
+    assert found == MODULE
+
+
+def run_axi(request, generics: dict, testcase: str, env: dict | None = None) -> None:
+    """One cocotb test of the top, from the module that holds it."""
+    run_cocotb(
+        "fastnms_axi",
+        MODULE[testcase],
+        generics,
+        testcase=testcase,
+        name=request.node.nodeid,
+        env=env,
+    )
+
 
 SMALL = {"MAX_WIDTH": 64, "MAX_HEIGHT": 48, "SCORE_VIDEO": True, "CORNER_FIFO_DEPTH": 64}
 PHOTO = {"MAX_WIDTH": 320, "MAX_HEIGHT": 240}
@@ -36,41 +107,47 @@ FRAME_CASES = [
     pytest.param(s, n, id=f"{s}-{n}", marks=[] if (s, n) in QUICK_VARIANTS else [pytest.mark.slow])
     for s, n in VARIANTS
 ]
+FRAME_TESTS = ["registers", "generated_frames", "empty_frame", "score_video", "region_filter"]
 
 
-@pytest.mark.parametrize(("score", "nms"), FRAME_CASES)
-def test_axi_frames(request, score, nms):
-    """Registers, generated images back to back with AXI-Lite reconfiguration,
-    the empty frame and the score video, with input idles and output stalls."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+@pytest.mark.parametrize(("score", "nms", "testcase"), each(FRAME_CASES, FRAME_TESTS))
+def test_axi_frames(request, score, nms, testcase):
+    """Registers, generated images back to back with AXI-Lite reconfiguration, the
+    empty frame, the score video and MIN_AREA, with input idles and output stalls."""
+    run_axi(
+        request,
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase="registers,generated_frames,empty_frame,score_video,region_filter",
-        name=request.node.nodeid,
+        testcase,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )
 
 
 # opencv + 3x3 in `make test`; sad + region4 (the region NMS) in `make test-full`.
-@pytest.mark.parametrize(
-    ("score", "nms"),
-    [("opencv", "3x3"), pytest.param("sad", "region4", marks=pytest.mark.slow)],
-)
-def test_axi_robustness(request, score, nms):
+ROBUSTNESS_CASES = [
+    pytest.param("opencv", "3x3", id="opencv-3x3"),
+    pytest.param("sad", "region4", marks=pytest.mark.slow, id="sad-region4"),
+]
+ROBUSTNESS_TESTS = [
+    "malformed_then_good",
+    "reset_mid_frame",
+    "interrupt_and_enable",
+    "fifo_full",
+    "valids_low_in_reset",
+    "live_mode",
+    "live_config_writes",
+]
+
+
+@pytest.mark.parametrize(("score", "nms", "testcase"), each(ROBUSTNESS_CASES, ROBUSTNESS_TESTS))
+def test_axi_robustness(request, score, nms, testcase):
     """Malformed frames, aresetn and soft reset mid-frame, interrupt, enable,
     the corner FIFO filling, VALIDs low in reset, the live-camera mode. With the
     region NMS too: it relies on the detector's stream being well formed
     whatever the input (its in_sof assertion would stop the simulation)."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {**SMALL, "SCORE": score, "NMS": nms},
-        testcase=(
-            "malformed_then_good,reset_mid_frame,interrupt_and_enable,fifo_full,"
-            "valids_low_in_reset,live_mode,live_config_writes"
-        ),
-        name=request.node.nodeid,
+        testcase,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
     )
 
@@ -84,24 +161,19 @@ BUDGET_CASES = [
     pytest.param("sad", "none", 1, 4, marks=pytest.mark.slow, id="sad-none-ppc1-k4"),
     pytest.param("opencv", "3x3", 4, 15, marks=pytest.mark.slow, id="opencv-3x3-ppc4-k15"),
 ]
+BUDGET_TESTS = ["registers", "budget_frames", "live_config_writes"]
 
 
-@pytest.mark.parametrize(
-    ("score", "nms", "ppc", "k"),
-    BUDGET_CASES,
-    ids=["opencv-3x3-ppc1-k15", "sad-none-ppc1-k4", "opencv-3x3-ppc4-k15"],
-)
-def test_axi_budget(request, score, nms, ppc, k):
+@pytest.mark.parametrize(("score", "nms", "ppc", "k", "testcase"), each(BUDGET_CASES, BUDGET_TESTS))
+def test_axi_budget(request, score, nms, ppc, k, testcase):
     """The keypoint budget in the top (MAX_PER_CELL = k): the BUDGET register's
     clamping, budgeted frames back to back with every CELL and several K, photograph
     crops, LIVE mode with noise at t = 0 at full width, aresetn mid-frame; input
     idles and output stalls."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {**PHOTO_BUDGET, "SCORE": score, "NMS": nms, "PPC": ppc, "MAX_PER_CELL": k},
-        testcase="registers,budget_frames,live_config_writes",
-        name=request.node.nodeid,
+        testcase,
         env={
             "TB_IDLE": "0.1",
             "TB_STALL": "0.2",
@@ -113,43 +185,32 @@ def test_axi_budget(request, score, nms, ppc, k):
 def test_axi_registers_random(request):
     """Random AXI4-Lite writes (any address, random byte strobes) and concurrent
     reads against a model of the register file, with B and R back-pressure."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
-        {**SMALL, "SCORE": "opencv", "NMS": "3x3"},
-        testcase="registers_random",
-        name=request.node.nodeid,
-    )
+    run_axi(request, {**SMALL, "SCORE": "opencv", "NMS": "3x3"}, "registers_random")
 
 
 # opencv + 3x3 in `make test`; the sad score and `none` in `make test-full`
 # (in `make test` the sad score runs at PPC 4 through the top on both engines,
 # sim/tests/test_engines.py, and with `none` at PPC 2 through the core).
 PPC_CASES = [
-    ("opencv", "3x3", 2),
-    ("opencv", "3x3", 4),
-    pytest.param("sad", "3x3", 2, marks=pytest.mark.slow),
-    pytest.param("sad", "3x3", 4, marks=pytest.mark.slow),
-    pytest.param("opencv", "none", 4, marks=pytest.mark.slow),
+    pytest.param("opencv", "3x3", 2, id="opencv-3x3-ppc2"),
+    pytest.param("opencv", "3x3", 4, id="opencv-3x3-ppc4"),
+    pytest.param("sad", "3x3", 2, marks=pytest.mark.slow, id="sad-3x3-ppc2"),
+    pytest.param("sad", "3x3", 4, marks=pytest.mark.slow, id="sad-3x3-ppc4"),
+    pytest.param("opencv", "none", 4, marks=pytest.mark.slow, id="opencv-none-ppc4"),
 ]
+PPC_TESTS = ["registers", "generated_frames", "empty_frame", "score_video", "malformed_then_good"]
 
 
-@pytest.mark.parametrize(
-    ("score", "nms", "ppc"),
-    PPC_CASES,
-    ids=["opencv-3x3-ppc2", "opencv-3x3-ppc4", "sad-3x3-ppc2", "sad-3x3-ppc4", "opencv-none-ppc4"],
-)
-def test_axi_ppc(request, score, nms, ppc):
+@pytest.mark.parametrize(("score", "nms", "ppc", "testcase"), each(PPC_CASES, PPC_TESTS))
+def test_axi_ppc(request, score, nms, ppc, testcase):
     """2 and 4 pixels per clock (PPC), 3x3 NMS and none: the registers (MODE.PPC,
     WIDTH rounded to whole beats), generated images back to back, the empty
     frame, the score video (PPC scores per beat), malformed lines counted in
     beats, with input idles and output stalls."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {**SMALL, "SCORE": score, "NMS": nms, "PPC": ppc},
-        testcase="registers,generated_frames,empty_frame,score_video,malformed_then_good",
-        name=request.node.nodeid,
+        testcase,
         env={"TB_IDLE": "0.2", "TB_STALL": "0.3"},
     )
 
@@ -159,12 +220,10 @@ def test_axi_ppc_throughput(request, tmp_path, ppc):
     """Clocks per frame at 2 and 4 pixels per clock: W x H / PPC clocks per
     frame back to back (within the bound of the throughput test)."""
     results = tmp_path / "throughput.json"
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {**SMALL, "SCORE": "opencv", "NMS": "3x3", "PPC": ppc},
-        testcase="throughput",
-        name=request.node.nodeid,
+        "throughput",
         env={"TB_FRAMES": "3", "TB_RESULTS": str(results)},
     )
     print("clocks to each frame's last record:", json.loads(results.read_text()))
@@ -174,28 +233,27 @@ def test_axi_throughput(request, tmp_path):
     """Clocks per frame without idles or stalls: one 64x48 frame, then three
     back to back."""
     results = tmp_path / "throughput.json"
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {**SMALL, "SCORE": "opencv", "NMS": "3x3"},
-        testcase="throughput",
-        name=request.node.nodeid,
+        "throughput",
         env={"TB_FRAMES": "3", "TB_RESULTS": str(results)},
     )
     print("clocks to each frame's last record:", json.loads(results.read_text()))
 
 
-@pytest.mark.parametrize("crops", [1, pytest.param(3, marks=pytest.mark.slow)])
-def test_axi_photos(request, crops):
+# One crop in `make test`, three in `make test-full`.
+PHOTO_CASES = [pytest.param(1, id="crops1"), pytest.param(3, marks=pytest.mark.slow, id="crops3")]
+
+
+@pytest.mark.parametrize(("crops", "testcase"), each(PHOTO_CASES, ["registers", "real_images"]))
+def test_axi_photos(request, crops, testcase):
     """Photograph crops through the top (no score video, default FIFO), against
-    the golden and cv2.FastFeatureDetector; the registers of this build. One crop
-    in `make test`, three in `make test-full`."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    the golden and cv2.FastFeatureDetector; the registers of this build."""
+    run_axi(
+        request,
         {**PHOTO, "SCORE": "opencv", "NMS": "3x3"},
-        testcase="registers,real_images",
-        name=request.node.nodeid,
+        testcase,
         env={
             "TB_IDLE": "0.05",
             "TB_STALL": "0.2",
@@ -208,12 +266,10 @@ def test_axi_photos(request, crops):
 def test_axi_throughput_1920(request, tmp_path):
     """One 1920x1080 frame, then two back to back, at the default generics."""
     results = tmp_path / "throughput.json"
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {"MAX_WIDTH": 1920, "MAX_HEIGHT": 1080, "SCORE": "opencv", "NMS": "3x3"},
-        testcase="throughput",
-        name=request.node.nodeid,
+        "throughput",
         env={"TB_FRAMES": "2", "TB_RESULTS": str(results)},
     )
     print("clocks to each frame's last record:", json.loads(results.read_text()))
@@ -224,12 +280,10 @@ def test_axi_live_1920(request):
     """The live-camera mode at full width: three 1920x40 noise frames at t = 0 into
     the default 512-record FIFO with the corner sink stopped (no input stall,
     DROPPED exact, OVERFLOW flags), then exact frames."""
-    run_cocotb(
-        "fastnms_axi",
-        "axi_tb",
+    run_axi(
+        request,
         {"MAX_WIDTH": 1920, "MAX_HEIGHT": 40, "SCORE": "opencv", "NMS": "3x3"},
-        testcase="live_mode",
-        name=request.node.nodeid,
+        "live_mode",
         env={"TB_STALL": "0.2"},
     )
 

@@ -1,6 +1,7 @@
 """pytest entry: fastnms_record_output under GHDL, without and with the ORB payload
 (record format 2) or the region NMS's area, at the smallest FIFO and one that is not a
-power of two."""
+power of two. Each cocotb test of tb/top/record_output_tb.py is a pytest item of its
+own, `<configuration>-<cocotb test>`."""
 
 import pytest
 
@@ -29,6 +30,18 @@ CASES = [
 ]
 
 
-@pytest.mark.parametrize("generics", CASES)
-def test_record_output(request, generics):
-    run_cocotb("fastnms_record_output", "record_output_tb", generics, name=request.node.nodeid)
+TESTS = ["hold", "orb_drops", "live", "abort"]
+
+
+@pytest.mark.parametrize(
+    ("generics", "testcase"),
+    [pytest.param(*c.values, t, id=f"{c.id}-{t}") for c in CASES for t in TESTS],
+)
+def test_record_output(request, generics, testcase):
+    run_cocotb(
+        "fastnms_record_output",
+        "record_output_tb",
+        generics,
+        testcase=testcase,
+        name=request.node.nodeid,
+    )
