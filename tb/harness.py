@@ -67,7 +67,7 @@ def run_cocotb(
 ) -> None:
     """Build `toplevel` with `generics` and run the cocotb tests of `module`.
 
-    `module` names a Python module in tb/ or one of its folders (`axi_tb`); `env` reaches the
+    `module` names a Python module in tb/ or one of its folders (`axi_frames_tb`); `env` reaches the
     testbench as environment variables; `extra_sources` are compiled after rtl/ (a synthesis
     wrapper entity, for one). Fails unless at least one test ran and none failed.
     """

@@ -635,8 +635,11 @@ def main(argv: list[str] | None = None) -> None:
     args = ap.parse_args(argv)
     configs = [tuple(c.split("-", 1)) for c in args.configs.split(",") if c]
     try:
-        # The last summary of this checkout, else the committed one (a fresh clone).
-        last = args.out if args.out.exists() else report.SYNTH_JSON
+        # The last summary of this checkout, else (a fresh clone, the default output)
+        # the committed one.
+        last = args.out
+        if not last.exists() and args.out == SUMMARY:
+            last = report.SYNTH_JSON
         previous = json.loads(last.read_text()) if last.exists() else None
     except ValueError:
         previous = None

@@ -60,16 +60,20 @@ DEEPER = {
     "fastnms_orb_moments": 5,
     # The ORB engine, and ORB after the budget around it: the angle units' depth.
     "fastnms_orb_describe": 13,
-    "fastnms_orb_feed": 13,
+    "fastnms_orb_feed": 14,
+    "fastnms_orb_stage": 13,
     # The ORB row buffers: a request's top row split by ROMs (which of the
     # memories read the next slot: a 37-bit thermometer of a 7-bit row), which
     # abc maps into a compare chain (docs/orb_rtl.md, Guarantees and limits).
     "fastnms_orb_rows": 5,
 }
-# Entities made of the ones above, several minutes in yosys: under make test-full.
-# (The ORB blocks of more than a minute each; the float units' netlists are also simulated
-# in tb/orb/test_orb_netlists.py.)
+# Under make test-full: the ORB blocks made of the ones above (several minutes each in
+# yosys), and the float units and the angle unit, whose depth is known above the target
+# (their netlists are also simulated in tb/orb/test_orb_netlists.py).
 SLOW_SYNTH = (
+    "fastnms_f32_add",
+    "fastnms_f32_mul",
+    "fastnms_orb_angle",
     "fastnms_orb_describe",
     "fastnms_orb_feed",
     "fastnms_orb_stage",
@@ -115,7 +119,8 @@ def test_entity_synthesizes_without_latches(entity):
     assert cells["logic_levels"] <= allowed, f"logic levels: {cells}"
 
 
-@pytest.mark.parametrize("score", ["opencv", "sad"])
+# sad's 12-bit scores in make test-full.
+@pytest.mark.parametrize("score", ["opencv", pytest.param("sad", marks=pytest.mark.slow)])
 def test_detector_1920(score):
     """The FAST detector at MAX_WIDTH 1920: at most 4 logic levels, the line
     buffer in block RAM (three RAMB36), no LUT RAM, no latches."""
@@ -127,7 +132,7 @@ def test_detector_1920(score):
     assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
 
 
-@pytest.mark.parametrize("score", ["opencv", "sad"])
+@pytest.mark.parametrize("score", ["opencv", pytest.param("sad", marks=pytest.mark.slow)])
 def test_core_1920(score):
     """Detector + 3x3 NMS at MAX_WIDTH 1920: at most 5 logic levels (see DEEPER), the six
     pixel lines and the two score lines in block RAM (8 BRAM18-equivalents
@@ -170,8 +175,15 @@ def test_axi_top_1920():
     assert cells["logic_levels"] <= MAX_LOGIC_LEVELS + 1, cells
 
 
-@pytest.mark.parametrize("window", [3, 7])
-@pytest.mark.parametrize("ppc", [1, 2, 4])
+# make test: PPC 4 with the detector's 7x7 window (the widest); the others in test-full.
+@pytest.mark.parametrize(
+    ("ppc", "window"),
+    [
+        pytest.param(p, w, id=f"{p}-{w}", marks=[] if (p, w) == (4, 7) else [pytest.mark.slow])
+        for p in (1, 2, 4)
+        for w in (3, 7)
+    ],
+)
 def test_window_3840_every_ppc(ppc, window):
     """The window generator of the detector (7x7) and of the 3x3 NMS at MAX_WIDTH
     3840 with 1, 2 and 4 pixels per clock: at most 4 logic levels on its own (its
@@ -185,7 +197,10 @@ def test_window_3840_every_ppc(ppc, window):
     assert not any(cells.get(c) for c in LUTRAM + LATCHES), cells
 
 
-@pytest.mark.parametrize(("score", "nms"), [("sad", "region4"), ("opencv", "region8")])
+@pytest.mark.parametrize(
+    ("score", "nms"),
+    [pytest.param("sad", "region4", marks=pytest.mark.slow), ("opencv", "region8")],
+)
 def test_core_region_1920(score, nms):
     """Detector + region NMS at 1920x1080: no latches; the detector's 6 BRAM18-equivalents
     and the region NMS's 4 (the data table's keys: 2; stack: 2); LUT RAM only for the

@@ -1,9 +1,6 @@
--- The NMS blocks' output record (fastnms_nms_3x3, fastnms_nms_none,
--- fastnms_nms_serializer): a keypoint, a row-end beat or the end-of-frame
--- beat, as a record whose fields take their widths where it is declared
--- (corner_t(x(..), y(..), score(..))), and packed into a vector for a skid
--- buffer or a FIFO: eof, row_end, x, y, score from the top bit down.
--- The blocks' ports stay flat (out_x, out_y, out_score, out_eof, out_row_end).
+-- The NMS blocks' output record (a keypoint, a row-end beat or the end-of-frame
+-- beat) as a VHDL record with pack/unpack for a skid buffer or a FIFO word.
+-- Datasheet: docs/README.md#packages
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;

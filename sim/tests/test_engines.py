@@ -302,8 +302,13 @@ def hard_frames(rng: np.random.Generator, width: int, height: int) -> list:
 REGION_VARIANTS = [(s, n) for s, n in VARIANTS if n.startswith("region")]
 
 
+# make test: region8 (the larger neighbourhood); region4 too in make test-full.
 @pytest.mark.parametrize(
-    ("score", "nms"), REGION_VARIANTS, ids=[f"{s}-{n}" for s, n in REGION_VARIANTS]
+    ("score", "nms"),
+    [
+        pytest.param(s, n, id=f"{s}-{n}", marks=[] if n == "region8" else [pytest.mark.slow])
+        for s, n in REGION_VARIANTS
+    ],
 )
 def test_region_nms_hard_content_full_width(score: str, nms: str, rng, seed):
     """The region NMS at full width (1920) on its hardest content, ten frames of

@@ -60,7 +60,9 @@ def test_detector_ppc(request, score, ppc, case):
     )
 
 
-@pytest.mark.parametrize("ppc", [pytest.param(2, marks=pytest.mark.slow), 4])
+# Both in make test-full; make test has photographs at PPC 4 through the core
+# (tb/core/test_core.py::test_core_ppc).
+@pytest.mark.parametrize("ppc", [pytest.param(p, marks=pytest.mark.slow) for p in (2, 4)])
 def test_detector_ppc_photos(request, ppc):
     """Photograph crops with 2 and 4 pixels per beat."""
     cases = testimages.photo_crops([10, 20, 50])[:3]

@@ -5,12 +5,26 @@ import json
 import pytest
 from fastnms.testing import images as testimages
 
-from tb.harness import run_cocotb
+from tb.harness import cocotb_tests, run_cocotb
+
+NMS3X3_CASES = cocotb_tests("nms3x3_tb")
+REGION_CASES = [
+    "shapes",
+    "area_saturates",
+    "random_maps",
+    "random_sequences",
+    "empty_and_reset",
+    "never_stalls",
+    "size_changes",
+    "output_backpressure",
+    "idle_output",
+]
 
 
+@pytest.mark.parametrize("case", NMS3X3_CASES)
 @pytest.mark.parametrize("score_bits", [8, 12])
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
-def test_nms_3x3(request, score_bits, idle, stall):
+def test_nms_3x3(request, score_bits, idle, stall, case):
     """With 12-bit scores the block is built with ROW_MARKS (as the core with a budget)."""
     generics = {"MAX_WIDTH": 24, "MAX_HEIGHT": 64, "SCORE_BITS": score_bits}
     if score_bits == 12:
@@ -19,6 +33,7 @@ def test_nms_3x3(request, score_bits, idle, stall):
         "fastnms_nms_3x3",
         "nms3x3_tb",
         generics,
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
@@ -33,42 +48,45 @@ def test_nms_3x3(request, score_bits, idle, stall):
     ids=["ppc2", "ppc4"],
 )
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.3)], ids=str)
-def test_nms_3x3_ppc(request, generics, idle, stall):
+@pytest.mark.parametrize("case", NMS3X3_CASES)
+def test_nms_3x3_ppc(request, generics, idle, stall, case):
     """Beats of 2 and 4 scores: random maps, plateaus, and the densest map
     through the serializer without an input wait (PPC 4 with ROW_MARKS)."""
     run_cocotb(
         "fastnms_nms_3x3",
         "nms3x3_tb",
         {**generics, "MAX_HEIGHT": 64},
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
 
 
+@pytest.mark.parametrize("case", REGION_CASES)
 @pytest.mark.parametrize("connectivity", [4, 8])
 @pytest.mark.parametrize(("idle", "stall"), [(0.0, 0.0), (0.3, 0.5)], ids=str)
-def test_nms_region(request, connectivity, idle, stall):
+def test_nms_region(request, connectivity, idle, stall, case):
     generics = {"MAX_WIDTH": 33, "MAX_HEIGHT": 64, "SCORE_BITS": 8, "CONNECTIVITY": connectivity}
     run_cocotb(
         "fastnms_nms_region",
         "region_tb",
         generics,
-        testcase="shapes,area_saturates,random_maps,random_sequences,empty_and_reset,never_stalls,"
-        "size_changes,output_backpressure,idle_output",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": str(idle), "TB_STALL": str(stall)},
     )
 
 
+@pytest.mark.parametrize("case", ["area_merges_saturated", "area_saturates"])
 @pytest.mark.parametrize("connectivity", [4, 8])
-def test_nms_region_area_saturation(request, connectivity):
+def test_nms_region_area_saturation(request, connectivity, case):
     """Areas past AREA_MAX merging as either operand (a build large enough for them)."""
     generics = {"MAX_WIDTH": 64, "MAX_HEIGHT": 80, "SCORE_BITS": 8, "CONNECTIVITY": connectivity}
     run_cocotb(
         "fastnms_nms_region",
         "region_tb",
         generics,
-        testcase="area_merges_saturated,area_saturates",
+        testcase=case,
         name=request.node.nodeid,
         env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
     )

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from tb.harness import run_cocotb
+from tb.harness import cocotb_tests, run_cocotb
 
 # The part with flat ports (GHDL's VPI does not show record ports).
 FLAT = Path(__file__).with_name("vhdl") / "fastnms_nms_region_schedule_flat.vhd"
@@ -26,11 +26,13 @@ FLAT = Path(__file__).with_name("vhdl") / "fastnms_nms_region_schedule_flat.vhd"
     ],
     ids=["w16", "w13", "w1920"],
 )
-def test_nms_region_schedule(request, generics, env):
+@pytest.mark.parametrize("case", cocotb_tests("region_schedule_tb"))
+def test_nms_region_schedule(request, generics, env, case):
     run_cocotb(
         "fastnms_nms_region_schedule_flat",
         "region_schedule_tb",
         generics,
+        testcase=case,
         name=request.node.nodeid,
         extra_sources=(FLAT,),
         env=env,

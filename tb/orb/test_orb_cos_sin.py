@@ -7,7 +7,7 @@ from tb.harness import run_cocotb
 
 
 @pytest.mark.parametrize(
-    "count", [2000, pytest.param(100000, marks=pytest.mark.slow)], ids=["2000", "100000"]
+    "count", [500, pytest.param(100000, marks=pytest.mark.slow)], ids=["500", "100000"]
 )
 def test_orb_cos_sin(request, count):
     run_cocotb(
