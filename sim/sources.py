@@ -37,22 +37,27 @@ def all_rtl_files() -> list[Path]:
     return sorted(RTL.rglob("*.vhd"))
 
 
-def tracked_rtl_files() -> list[Path]:
-    """The .vhd files under rtl/ that git tracks: the project's RTL, without the
-    files someone is still writing. Every file under rtl/ when this is not a git
+def tracked_files(pathspec: str, fallback: list[Path]) -> list[Path]:
+    """The files git tracks that match `pathspec` (existing ones, sorted): the project's
+    files, without those someone is still writing. `fallback` when this is not a git
     checkout."""
     try:
         out = subprocess.run(
-            ["git", "ls-files", "-z", "--", "rtl"],
+            ["git", "ls-files", "-z", "--", pathspec],
             cwd=REPO,
             capture_output=True,
             check=True,
             text=True,
         ).stdout
     except (OSError, subprocess.CalledProcessError):
-        return all_rtl_files()
-    files = [REPO / name for name in out.split("\0") if name.endswith(".vhd")]
-    return sorted(f for f in files if f.exists())
+        return fallback
+    return sorted(f for f in (REPO / name for name in out.split("\0") if name) if f.exists())
+
+
+def tracked_rtl_files() -> list[Path]:
+    """The .vhd files under rtl/ that git tracks; every file under rtl/ when this is not
+    a git checkout."""
+    return tracked_files("rtl/*.vhd", all_rtl_files())
 
 
 def order_problems(files: list[Path]) -> list[str]:

@@ -5,10 +5,9 @@ lines (past that a block or a module wants splitting)."""
 from __future__ import annotations
 
 import re
-import subprocess
 
 import pytest
-from fastnms.sim.sources import REPO, tracked_rtl_files
+from fastnms.sim.sources import REPO, tracked_files, tracked_rtl_files
 
 MAX_LINES = 800
 _ENTITY = re.compile(r"^\s*entity\s+(\w+)\s+is\b", re.IGNORECASE | re.MULTILINE)
@@ -17,21 +16,11 @@ FILES = tracked_rtl_files()
 
 
 def tracked_python_files() -> list:
-    """The .py files git tracks (every .py file outside .venv and build when this is
-    not a git checkout)."""
-    try:
-        out = subprocess.run(
-            ["git", "ls-files", "-z", "--", "*.py"],
-            cwd=REPO,
-            capture_output=True,
-            check=True,
-            text=True,
-        ).stdout
-        files = [REPO / name for name in out.split("\0") if name]
-    except (OSError, subprocess.CalledProcessError):
-        skip = {".venv", "build", "sim_build"}
-        files = [f for f in REPO.rglob("*.py") if not skip & set(f.relative_to(REPO).parts)]
-    return sorted(f for f in files if f.exists())
+    """The .py files git tracks (every .py file outside .venv and build when this is not
+    a git checkout)."""
+    skip = {".venv", "build", "sim_build"}
+    every = [f for f in REPO.rglob("*.py") if not skip & set(f.relative_to(REPO).parts)]
+    return tracked_files("*.py", sorted(every))
 
 
 def line_count(path) -> int:
