@@ -34,6 +34,7 @@ from fastnms.sim.run import (
     FrameResult,
     SimError,
     SimResult,
+    budget_in_effect,
     build_size,
     check_size,
     generics_for,
@@ -184,6 +185,15 @@ def simulate(frames: list[tuple[str, np.ndarray]], args: argparse.Namespace) -> 
             )
         if args.ppc != 1:
             raise UsageError("--orb needs --ppc 1")
+        # The IP clamps K to the ORB engine's rate; the run and its checks use that K.
+        _, k = budget_in_effect(*budget, generics_for(args.score, args.nms, orb=True))
+        if k != args.per_cell:
+            print(
+                f"{PROG} sim: --per-cell {args.per_cell} at --cell {budget[0]} is above the "
+                f"ORB engine's rate; the IP uses {k} (BUDGET.PER_CELL)",
+                file=sys.stderr,
+            )
+            args.per_cell, budget = k, (budget[0], k)
     progress = Progress()
 
     def announce(text: str) -> None:

@@ -9,10 +9,10 @@ Checked at every rising edge of aclk, on the values settled after the edge:
   VALID is 1 the payload has no X/U/Z bit; once VALID is 1 without READY, VALID stays 1
   and the payload stays unchanged until the handshake;
 - the corner records: TKEEP all ones, TLAST equal to the record's LAST bit on its final
-  beat and 0 on the others, the flags EMPTY/ABORTED/OVERFLOW only on a LAST record, EMPTY
-  with x = y = score = area = 0 and never with ORB, no AREA with ORB (the region NMS has
-  no ORB), the reserved bits 0; a record with ORB is
-  REC_ORB_BEATS beats (record format 2), bits 63:32 of its angle beat 0;
+  beat and 0 on the others, the flags EMPTY/ABORTED/OVERFLOW/ERROR only on a LAST record,
+  EMPTY with x = y = score = area = 0 and never with ORB, no AREA with ORB (the region
+  NMS has no ORB), the reserved bits 0; a record with ORB is REC_ORB_BEATS beats (record
+  format 2), bits 63:32 of its angle beat 0;
 - AXI4-Lite: no B response without a write address and data taken before it, no R response
   without a read address taken before it.
 
@@ -34,6 +34,7 @@ RESERVED = (
         regs.REC_X.mask
         | regs.REC_Y.mask
         | regs.REC_SCORE.mask
+        | regs.REC_ERROR.mask
         | regs.REC_EMPTY.mask
         | regs.REC_LAST.mask
         | regs.REC_ABORTED.mask
@@ -233,9 +234,14 @@ class AxiProtocolChecker:
             self._fail(f"record 0x{word:016x}: EMPTY with ORB")
         if orb and taken:
             self.payload_left, self.payload_last = regs.REC_ORB_BEATS - 1, bool(flag_last)
-        flags = regs.REC_EMPTY.mask | regs.REC_ABORTED.mask | regs.REC_OVERFLOW.mask
+        flags = (
+            regs.REC_EMPTY.mask
+            | regs.REC_ABORTED.mask
+            | regs.REC_OVERFLOW.mask
+            | regs.REC_ERROR.mask
+        )
         if word & flags and not flag_last:
-            self._fail(f"record 0x{word:016x}: EMPTY/ABORTED/OVERFLOW without LAST")
+            self._fail(f"record 0x{word:016x}: EMPTY/ABORTED/OVERFLOW/ERROR without LAST")
         if orb and regs.REC_AREA.get(word):
             self._fail(f"record 0x{word:016x}: AREA with ORB")
         corner = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask | regs.REC_AREA.mask

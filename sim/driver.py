@@ -253,6 +253,7 @@ class AxiTop:
         """The names of the STATUS error bits that are set."""
         word = await self.status()
         names = ["EOL_EARLY", "EOL_LATE", "SOF_MISSING", "SOF_EARLY", "OVERFLOW"]
+        names += ["ORB_ROWS", "ORB_TAGS", "ORB_COUNT", "CONFIG_QUEUE"]  # internal errors
         return {n for n in names if getattr(regs, f"STATUS_{n}").get(word)}
 
     # ---- streams --------------------------------------------------------------

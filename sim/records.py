@@ -35,6 +35,16 @@ Corner = tuple[int, int, int]
 
 # The fields that are 0 in the EMPTY record.
 _FIELDS = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask | regs.REC_AREA.mask
+# The bits of beat 0 that no field uses (0 in every record).
+_RESERVED = ((1 << 64) - 1) & ~(
+    _FIELDS
+    | regs.REC_ERROR.mask
+    | regs.REC_EMPTY.mask
+    | regs.REC_LAST.mask
+    | regs.REC_ABORTED.mask
+    | regs.REC_OVERFLOW.mask
+    | regs.REC_ORB.mask
+)
 
 
 @dataclass
@@ -50,6 +60,7 @@ class Frame:
     empty: bool = False  # ended by the EMPTY record
     aborted: bool = False  # a soft reset cut the frame
     overflow: bool = False  # records of this frame, or whole frames before it, were dropped
+    error: bool = False  # an internal error reset the pipeline: records or frames were lost
     malformed: bool = False  # a record broke the format
     complete: bool = True  # False: the stream ended before the frame's LAST record
     orb: bool = False  # its first record has ORB (record format 2)
@@ -57,7 +68,7 @@ class Frame:
     @property
     def flags(self) -> list[str]:
         """The names of the flags that are set, in the order of the C decoder's bits."""
-        names = ("empty", "aborted", "overflow", "incomplete", "malformed", "orb")
+        names = ("empty", "aborted", "overflow", "incomplete", "malformed", "orb", "error")
         values = (
             self.empty,
             self.aborted,
@@ -65,6 +76,7 @@ class Frame:
             not self.complete,
             self.malformed,
             self.orb,
+            self.error,
         )
         return [n for n, v in zip(names, values, strict=True) if v]
 
@@ -117,9 +129,16 @@ class RecordDecoder:
             frame.malformed = True  # records with and without ORB
         empty, last = bool(regs.REC_EMPTY.get(word)), bool(regs.REC_LAST.get(word))
         aborted, overflow = bool(regs.REC_ABORTED.get(word)), bool(regs.REC_OVERFLOW.get(word))
+        error = bool(regs.REC_ERROR.get(word))
         if empty:
             frame.empty = True
-            if not last or aborted or word & _FIELDS or (frame.records != 1 and not overflow):
+            lost = overflow or error
+            if (
+                not last
+                or aborted
+                or word & (_FIELDS | _RESERVED)
+                or (frame.records != 1 and not lost)
+            ):
                 frame.malformed = True
         else:
             frame.corners.append(
@@ -131,7 +150,8 @@ class RecordDecoder:
                 frame.descriptors.append(bytes(32))
         frame.aborted |= aborted
         frame.overflow |= overflow
-        if (aborted or overflow) and not last:
+        frame.error |= error
+        if (aborted or overflow or error) and not last:
             frame.malformed = True
         if orb:
             if empty:

@@ -62,6 +62,10 @@ STATUS_EOL_LATE = Field(3, 1, "w1c", 0)
 STATUS_SOF_MISSING = Field(4, 1, "w1c", 0)
 STATUS_SOF_EARLY = Field(5, 1, "w1c", 0)
 STATUS_OVERFLOW = Field(6, 1, "w1c", 0)
+STATUS_ORB_ROWS = Field(7, 1, "w1c", 0)
+STATUS_ORB_TAGS = Field(8, 1, "w1c", 0)
+STATUS_ORB_COUNT = Field(9, 1, "w1c", 0)
+STATUS_CONFIG_QUEUE = Field(10, 1, "w1c", 0)
 
 # THRESHOLD: FAST threshold t, for the frames whose first pixel is accepted after the write's B
 # response.
@@ -144,7 +148,8 @@ MIN_AREA_VALUE = Field(0, 11, "rw", 0)
 REC_ORB_BEATS = 6
 REC_X = Field(0, 16, "ro", 0)
 REC_Y = Field(16, 16, "ro", 0)
-REC_SCORE = Field(32, 16, "ro", 0)
+REC_SCORE = Field(32, 12, "ro", 0)
+REC_ERROR = Field(44, 1, "ro", 0)
 REC_EMPTY = Field(48, 1, "ro", 0)
 REC_LAST = Field(49, 1, "ro", 0)
 REC_ABORTED = Field(50, 1, "ro", 0)
@@ -185,6 +190,10 @@ REGISTERS: dict[str, Register] = {
             "SOF_MISSING": STATUS_SOF_MISSING,
             "SOF_EARLY": STATUS_SOF_EARLY,
             "OVERFLOW": STATUS_OVERFLOW,
+            "ORB_ROWS": STATUS_ORB_ROWS,
+            "ORB_TAGS": STATUS_ORB_TAGS,
+            "ORB_COUNT": STATUS_ORB_COUNT,
+            "CONFIG_QUEUE": STATUS_CONFIG_QUEUE,
         },
     ),
     "THRESHOLD": Register(THRESHOLD, {"VALUE": THRESHOLD_VALUE}),

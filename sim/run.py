@@ -163,6 +163,23 @@ def generics_for(
     return generics
 
 
+# The ORB engine's clocks per keypoint in the top (512 / ORB_LANES, rtl/common/
+# fastnms_pkg.vhd): at one pixel per clock it keeps up with CELL * CELL / 64 per cell.
+ORB_KEYPOINT_CLOCKS = 64
+
+
+def budget_in_effect(cell: int, per_cell: int, generics: dict[str, object]) -> tuple[int, int]:
+    """The (CELL, K) a frame uses after (cell, per_cell) is written to BUDGET of a
+    build with `generics`, cell a power of two in 16 .. 256: K at most MAX_PER_CELL;
+    with DESCRIPTOR "orb", CELL at most ORB_MAX_CELL, then K at most the ORB engine's
+    rate at that CELL, CELL * CELL / 64 (4 at CELL 16; docs/registers.md, BUDGET)."""
+    k = min(per_cell, int(generics.get("MAX_PER_CELL", 0)))
+    if generics.get("DESCRIPTOR", "none") == "orb":
+        cell = min(cell, int(generics.get("ORB_MAX_CELL", 16)))
+        k = min(k, cell * cell // ORB_KEYPOINT_CLOCKS)
+    return cell, k
+
+
 def run_rtl(
     frames: Sequence[tuple[np.ndarray, int]],
     score: str,

@@ -98,6 +98,13 @@ static bool take_payload(struct fastnms_decoder *dec, uint64_t word)
     return dec->payload_last;
 }
 
+/* The bits of beat 0 that no field uses (0 in every record). */
+#define RESERVED_BITS                                                                     \
+    (~(FASTNMS_REC_X_MASK | FASTNMS_REC_Y_MASK | FASTNMS_REC_SCORE_MASK |                 \
+       FASTNMS_REC_ERROR_MASK | FASTNMS_REC_EMPTY_MASK | FASTNMS_REC_LAST_MASK |          \
+       FASTNMS_REC_ABORTED_MASK | FASTNMS_REC_OVERFLOW_MASK | FASTNMS_REC_ORB_MASK |      \
+       FASTNMS_REC_AREA_MASK))
+
 /* Add one word to the frame in progress; true if it is the frame's last. */
 static bool take_record(struct fastnms_decoder *dec, uint64_t word)
 {
@@ -105,9 +112,10 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
     const bool last = (word & FASTNMS_REC_LAST_MASK) != 0u;
     const bool aborted = (word & FASTNMS_REC_ABORTED_MASK) != 0u;
     const bool overflow = (word & FASTNMS_REC_OVERFLOW_MASK) != 0u;
+    const bool error = (word & FASTNMS_REC_ERROR_MASK) != 0u;
     const bool orb = (word & FASTNMS_REC_ORB_MASK) != 0u;
     const uint64_t fields = FASTNMS_REC_X_MASK | FASTNMS_REC_Y_MASK | FASTNMS_REC_SCORE_MASK |
-                            FASTNMS_REC_AREA_MASK;
+                            FASTNMS_REC_AREA_MASK | RESERVED_BITS;
 
     if (dec->words == 0u)
         dec->first_word = dec->position;
@@ -128,9 +136,9 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
 
     if (empty) {
         /* The only record of its frame, with LAST, all fields 0 (AREA too); records of
-         * earlier frames may precede it when their LAST was dropped (OVERFLOW). */
+         * earlier frames may precede it when their LAST was lost (OVERFLOW, ERROR). */
         dec->flags |= FASTNMS_FRAME_EMPTY;
-        if (!last || aborted || (word & fields) != 0u || (dec->records != 1u && !overflow))
+        if (!last || aborted || (word & fields) != 0u || (dec->records != 1u && !overflow && !error))
             dec->flags |= FASTNMS_FRAME_MALFORMED;
     } else {
         dec->corners = saturating_increment(dec->corners);
@@ -154,7 +162,9 @@ static bool take_record(struct fastnms_decoder *dec, uint64_t word)
         dec->flags |= FASTNMS_FRAME_ABORTED;
     if (overflow)
         dec->flags |= FASTNMS_FRAME_OVERFLOW;
-    if ((aborted || overflow) && !last)
+    if (error)
+        dec->flags |= FASTNMS_FRAME_ERROR;
+    if ((aborted || overflow || error) && !last)
         dec->flags |= FASTNMS_FRAME_MALFORMED;
     if (orb) {
         if (empty)

@@ -70,6 +70,8 @@ struct fastnms_orb {
 #define FASTNMS_FRAME_TRUNCATED  0x10u /* more corners than the storage held: `stored` < `corners` */
 #define FASTNMS_FRAME_MALFORMED  0x20u /* a record broke the format (see sw/README.md) */
 #define FASTNMS_FRAME_ORB        0x40u /* the frame's records carry ORB payloads (format 2) */
+#define FASTNMS_FRAME_ERROR      0x80u /* an internal error reset the pipeline (STATUS bits 10:7):
+                                          this frame's records, or whole frames before it, were lost */
 
 struct fastnms_frame {
     uint32_t index;       /* frames delivered by this decoder before this one */
@@ -167,7 +169,12 @@ struct fastnms_regs_io {
 #define FASTNMS_STATUS_STICKY                                                             \
     (FASTNMS_STATUS_FRAME_DONE_MASK | FASTNMS_STATUS_EOL_EARLY_MASK |                     \
      FASTNMS_STATUS_EOL_LATE_MASK | FASTNMS_STATUS_SOF_MISSING_MASK |                     \
-     FASTNMS_STATUS_SOF_EARLY_MASK | FASTNMS_STATUS_OVERFLOW_MASK)
+     FASTNMS_STATUS_SOF_EARLY_MASK | FASTNMS_STATUS_OVERFLOW_MASK |                      \
+     FASTNMS_STATUS_INTERNAL)
+/* The STATUS bits of the internal errors (each resets the pipeline). */
+#define FASTNMS_STATUS_INTERNAL                                                           \
+    (FASTNMS_STATUS_ORB_ROWS_MASK | FASTNMS_STATUS_ORB_TAGS_MASK |                        \
+     FASTNMS_STATUS_ORB_COUNT_MASK | FASTNMS_STATUS_CONFIG_QUEUE_MASK)
 /* Polls of CMD.SOFT_RESET a soft reset is given by default (it takes a few clocks). */
 #define FASTNMS_SOFT_RESET_POLLS 1000u
 

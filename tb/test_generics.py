@@ -101,6 +101,14 @@ MORE = [
     ("fastnms_nms_none", {"PPC": 4, "MAX_WIDTH": 30}, "PPC must be 1, 2 or 4, and MAX_WIDTH"),
     ("fastnms_axi", {"PPC": 4, "MAX_WIDTH": 1918}, "PPC must be 1, 2 or 4, and MAX_WIDTH"),
     ("fastnms_video_check", {"PPC": 3}, "PPC must be 1, 2 or 4"),
+    (
+        "fastnms_axi",
+        {"DESCRIPTOR": "orb", "MAX_PER_CELL": 5, "ORB_MAX_CELL": 16},
+        'with DESCRIPTOR "orb", MAX_PER_CELL must be at most ORB_MAX_CELL ** 2 / 64',
+    ),
+    ("fastnms_core", {"TEST_FAULT": "rows"}, 'TEST_FAULT must be "none" or "config"'),
+    ("fastnms_orb_stage", {"TEST_FAULT": "config"}, 'TEST_FAULT must be "none", "rows"'),
+    ("fastnms_orb_feed", {"TEST_FAULT": "count"}, 'TEST_FAULT must be "none", "rows"'),
 ]
 
 _GENERIC = re.compile(r"\bentity\s+(\w+)\s+is\s+generic\s*\(", re.IGNORECASE)

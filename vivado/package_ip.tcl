@@ -228,7 +228,7 @@ fastnms::gui_param $core CORNER_FIFO_DEPTH {Corner FIFO depth} \
     {Corner records buffered ahead of m_axis_corners.}
 fastnms::gui_list $core CORNER_FIFO_DEPTH {16 32 64 128 256 512 1024 2048 4096 8192 16384}
 fastnms::gui_param $core MAX_PER_CELL {Keypoint budget (largest K)} \
-    {0: no budget. 1 .. 15: keep at most K records per grid cell (register BUDGET: K and the cell size, 16 .. 256), the best scores; needs NMS 3x3 or none (an elaboration assert says so otherwise). At 15 it costs 26 BRAM18.}
+    {0: no budget. 1 .. 15: keep at most K records per grid cell (register BUDGET: K and the cell size, 16 .. 256), the best scores; needs NMS 3x3 or none (an elaboration assert says so otherwise); with ORB at most ORB_MAX_CELL * ORB_MAX_CELL / 64 (4 at 16), the ORB engine's rate. At 15 it costs 26 BRAM18.}
 fastnms::gui_range $core MAX_PER_CELL 0 15
 fastnms::gui_param $core DESCRIPTOR {Descriptor} \
     {none: corner records of one beat. orb: each keypoint's ORB angle and 256-bit descriptor, equal to OpenCV's, in records of 6 beats (record format 2); needs PPC 1, NMS 3x3 or none and MAX_PER_CELL > 0 (an elaboration assert says so otherwise).}
@@ -236,6 +236,9 @@ fastnms::gui_list $core DESCRIPTOR {none orb}
 fastnms::gui_param $core ORB_MAX_CELL {Largest ORB cell} \
     {With ORB, the largest cell side of register BUDGET (a larger write is clamped to it); it sizes the rows kept for ORB: each doubling doubles them.}
 fastnms::gui_list $core ORB_MAX_CELL {16 32 64 128 256}
+fastnms::gui_param $core TEST_FAULT {Test fault (tests only)} \
+    {none. The other values build a deliberate internal error for the project's own tests; never in a design.}
+fastnms::gui_list $core TEST_FAULT {none}
 
 # ---- save -------------------------------------------------------------------
 ipx::create_xgui_files $core

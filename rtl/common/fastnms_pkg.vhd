@@ -38,6 +38,24 @@ package fastnms_pkg is
   -- y mod 16 = 15, the last lines of the keypoint budget's smallest cells.
   function is_mark_line (y : unsigned) return boolean;
 
+  -- fastnms_core's internal_error bits (in the order of fastnms_axi's STATUS
+  -- bits 7 .. 10): errors that would corrupt or misalign records.
+  constant INTERNAL_ORB_ROWS     : natural  := 0;
+  constant INTERNAL_ORB_TAGS     : natural  := 1;
+  constant INTERNAL_ORB_COUNT    : natural  := 2;
+  constant INTERNAL_CONFIG_QUEUE : natural  := 3;
+  constant INTERNAL_ERRORS       : positive := 4;
+
+  -- The ORB engine in fastnms_core: ORB_LANES points per clock, so a keypoint
+  -- every 512 / ORB_LANES clocks (docs/orb_rtl.md, Throughput).
+  constant ORB_LANES : positive := 8;
+
+  -- The largest K (records per cell) the ORB engine sustains at one pixel per
+  -- clock with cells of 16 * 2 ** cell_log pixels: a cell row's keypoints take
+  -- no more clocks than its pixels, K <= CELL * CELL / (512 / ORB_LANES);
+  -- at most 15, the budget's largest K.
+  function orb_rate_per_cell (cell_log : natural) return natural;
+
 end package fastnms_pkg;
 
 package body fastnms_pkg is
@@ -127,5 +145,11 @@ package body fastnms_pkg is
     wide := resize(y, 16);
     return wide(3 downto 0) = "1111";
   end function is_mark_line;
+
+  function orb_rate_per_cell (cell_log : natural) return natural is
+    constant CELL : positive := 16 * 2 ** minimum(cell_log, 4);
+  begin
+    return minimum(15, CELL * CELL / (512 / ORB_LANES));
+  end function orb_rate_per_cell;
 
 end package body fastnms_pkg;

@@ -22,7 +22,11 @@ entity fastnms_core is
     PPC          : positive := 1;
     MAX_PER_CELL : natural  := 0;
     DESCRIPTOR   : string   := "none";
-    ORB_MAX_CELL : positive := 16
+    ORB_MAX_CELL : positive := 16;
+    -- Tests only: "none"; "rows", "tags", "count" (fastnms_orb_stage);
+    -- "config": the configuration queue holds one frame's (internal_error
+    -- fires when two frames are in flight).
+    TEST_FAULT : string := "none"
   );
   port (
     clk            : in    std_logic;
@@ -54,7 +58,10 @@ entity fastnms_core is
     tap_sof        : out   std_logic;
     tap_eol        : out   std_logic;
     err_line       : out   std_logic;
-    err_frame      : out   std_logic
+    err_frame      : out   std_logic;
+    -- Errors that would corrupt or misalign records, one-clock pulses
+    -- (registered), bits INTERNAL_* of fastnms_pkg; a reset recovers.
+    internal_error : out   std_logic_vector(INTERNAL_ERRORS - 1 downto 0)
   );
 end entity fastnms_core;
 
@@ -96,6 +103,18 @@ architecture rtl of fastnms_core is
   end function cell_log_of;
 
   constant ORB_CELL_LOG : natural := cell_log_of(ORB_MAX_CELL);
+
+  -- The ORB stage's own faults.
+  function orb_fault return string is
+  begin
+
+    if TEST_FAULT = "config" then
+      return "none";
+    end if;
+
+    return TEST_FAULT;
+
+  end function orb_fault;
 
   signal d_valid   : std_logic;
   signal d_ready   : std_logic;
@@ -185,6 +204,10 @@ begin
     severity failure;
   assert not ORB or ORB_MAX_CELL = 2 ** (ORB_CELL_LOG + 4)
     report "fastnms_core: ORB_MAX_CELL must be 16, 32, 64, 128 or 256"
+    severity failure;
+  assert TEST_FAULT = "none" or TEST_FAULT = "config" or
+         (ORB and (TEST_FAULT = "rows" or TEST_FAULT = "tags" or TEST_FAULT = "count"))
+    report "fastnms_core: TEST_FAULT must be ""none"" or ""config"" (with ORB also ""rows"", ""tags"" or ""count"")"
     severity failure;
 
   -- With ORB, CELL no larger than ORB_MAX_CELL.
@@ -351,8 +374,9 @@ begin
   -- ---- the frame's configuration at the NMS's output ---------------------------
 
   no_config_queue : if MAX_PER_CELL = 0 and not REGION generate
-    q_valid <= '1';
-    q_tag   <= (others => '0');
+    q_valid                               <= '1';
+    q_tag                                 <= (others => '0');
+    internal_error(INTERNAL_CONFIG_QUEUE) <= '0';
   end generate no_config_queue;
 
   with_config_queue : if MAX_PER_CELL > 0 or REGION generate
@@ -362,13 +386,25 @@ begin
     -- gives one end-of-frame record, so queue and frames stay in step.
     -- Frames between the detector's output and the NMS's output: two, a few
     -- more when frames without records pile up behind a stalled output; the
-    -- queue has room for 6 at least (a simulation assertion checks that it
-    -- never refuses one).
+    -- queue has room for 6 at least (a refusal raises internal_error, and a
+    -- simulation assertion stops).
     signal q_push  : std_logic;
     signal q_ready : std_logic;
+    signal q_taken : std_logic;
   begin
 
     q_push <= d_valid and d_ready and d_sof;
+    -- (TEST_FAULT "config": a queue of one configuration.)
+    q_taken <= q_push and q_ready and not (to_sl(TEST_FAULT = "config") and q_valid);
+
+    refused : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        internal_error(INTERNAL_CONFIG_QUEUE) <= q_push and not q_taken and not rst;
+      end if;
+
+    end process refused;
 
     config_queue : entity work.fastnms_fifo
       generic map (
@@ -379,7 +415,7 @@ begin
       port map (
         clk       => clk,
         rst       => rst,
-        in_valid  => q_push,
+        in_valid  => q_taken,
         in_ready  => q_ready,
         in_data   => d_tag,
         out_valid => q_valid,
@@ -393,7 +429,7 @@ begin
     begin
 
       if rising_edge(clk) then
-        assert not (rst = '0' and q_push = '1' and q_ready = '0')
+        assert not (rst = '0' and q_push = '1' and q_ready = '0' and TEST_FAULT = "none")
           report "fastnms_core: the configuration queue is full"
           severity failure;
       end if;
@@ -478,6 +514,10 @@ begin
     out_angle      <= (others => '0');
     out_descriptor <= (others => '0');
     orb_dropped    <= '0';
+
+    internal_error(INTERNAL_ORB_ROWS)  <= '0';
+    internal_error(INTERNAL_ORB_TAGS)  <= '0';
+    internal_error(INTERNAL_ORB_COUNT) <= '0';
   end generate no_orb;
 
   with_orb : if ORB generate
@@ -545,9 +585,10 @@ begin
         MAX_WIDTH    => MAX_WIDTH,
         MAX_HEIGHT   => MAX_HEIGHT,
         SCORE_BITS   => SCORE_BITS,
-        LANES        => 8,
+        LANES        => ORB_LANES,
         MAX_CELL     => 2 ** (ORB_CELL_LOG + 4),
-        MAX_PER_CELL => maximum(MAX_PER_CELL, 1)
+        MAX_PER_CELL => maximum(MAX_PER_CELL, 1),
+        TEST_FAULT   => orb_fault
       )
       port map (
         clk            => clk,
@@ -574,7 +615,10 @@ begin
         out_eof        => o_eof,
         out_angle      => out_angle,
         out_descriptor => out_descriptor,
-        dropped        => orb_dropped
+        dropped        => orb_dropped,
+        err_rows       => internal_error(INTERNAL_ORB_ROWS),
+        err_tags       => internal_error(INTERNAL_ORB_TAGS),
+        err_count      => internal_error(INTERNAL_ORB_COUNT)
       );
 
     out_valid <= o_valid;

@@ -1,6 +1,7 @@
 -- ORB after the budget: the image and its blur in, kept keypoints in, each
 -- with its angle and descriptor out; keeps the rows a keypoint's columns are
--- read from and never overwrites one unread.
+-- read from and never overwrites one unread; flags the internal errors
+-- that would corrupt a record (err_rows, err_tags).
 -- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
@@ -17,7 +18,11 @@ entity fastnms_orb_feed is
     LANES      : positive := 8;
     -- The largest CELL of the budget in front (16 .. 256, a power of two):
     -- sizes the rows kept, 2 MAX_CELL + 2 HALF each side.
-    MAX_CELL : positive := 16
+    MAX_CELL : positive := 16;
+    -- Tests only: "none"; "rows": the input never waits for room in the rows
+    -- (err_rows fires when the engine falls behind); "tags": the tag queue
+    -- holds one record (err_tags fires when two keypoints are in flight).
+    TEST_FAULT : string := "none"
   );
   port (
     clk : in    std_logic;
@@ -49,7 +54,11 @@ entity fastnms_orb_feed is
     out_y          : out   unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     out_score      : out   unsigned(SCORE_BITS - 1 downto 0);
     out_angle      : out   std_logic_vector(31 downto 0);
-    out_descriptor : out   std_logic_vector(255 downto 0)
+    out_descriptor : out   std_logic_vector(255 downto 0);
+    -- Internal errors, one-clock pulses (registered): a keypoint's rows were
+    -- overwritten before it was read; the tag queue refused a record.
+    err_rows : out   std_logic;
+    err_tags : out   std_logic
   );
 end entity fastnms_orb_feed;
 
@@ -101,6 +110,8 @@ architecture rtl of fastnms_orb_feed is
   -- The plain columns' records, one per keypoint, taken with its last column.
   signal tag_valid,   tag_push  : std_logic;
   signal tag_room               : std_logic;
+  signal tag_taken              : std_logic;
+  signal overwritten            : std_logic_vector(0 to 1);
   signal tag_head               : std_logic_vector(RECORD_BITS - 1 downto 0);
   signal tag_pushed             : std_logic_vector(RECORD_BITS - 1 downto 0);
   signal plain_count            : natural range 0 to 30;
@@ -113,6 +124,9 @@ begin
 
   assert MAX_CELL = 16 or MAX_CELL = 32 or MAX_CELL = 64 or MAX_CELL = 128 or MAX_CELL = 256
     report "fastnms_orb_feed: MAX_CELL must be 16, 32, 64, 128 or 256"
+    severity failure;
+  assert TEST_FAULT = "none" or TEST_FAULT = "rows" or TEST_FAULT = "tags"
+    report "fastnms_orb_feed: TEST_FAULT must be ""none"", ""rows"" or ""tags"""
     severity failure;
 
   in_valid <= plain_valid & blurred_valid;
@@ -296,10 +310,14 @@ begin
           back   <= (current + HALF + 2 ** Y_BITS - head_y) mod 2 ** Y_BITS;
           phys_r <= physical;
         end if;
+        -- (back >= ROWS: the keypoint's top row was overwritten.)
+        overwritten(s) <= '0';
         if warm = 2 then
           top_r <= phys_r;
           if back < ROWS then
             top_r <= phys_r - back;
+          else
+            overwritten(s) <= '1';
           end if;
         end if;
         if warm = 1 then
@@ -336,7 +354,7 @@ begin
         -- the rows from HALF above that line.
         limit     <= to_integer(low_bits) + ROWS - 1 - HALF;
         pending_r <= pending;
-        room      <= to_sl(not pending_r or current < limit);
+        room      <= to_sl(not pending_r or current < limit or TEST_FAULT = "rows");
         -- Idle: nothing pending for a few clocks, the last requests read.
         if pending then
           quiet <= 0;
@@ -346,15 +364,16 @@ begin
         idle <= to_sl(not pending and quiet >= 6);
 
         if rst = '1' then
-          busy      <= '0';
-          rd_valid  <= '0';
-          warm      <= 0;
-          current   <= 0;
-          physical  <= 0;
-          room      <= '1';
-          pending_r <= false;
-          idle      <= '1';
-          quiet     <= 7;
+          busy           <= '0';
+          rd_valid       <= '0';
+          warm           <= 0;
+          current        <= 0;
+          physical       <= 0;
+          room           <= '1';
+          pending_r      <= false;
+          overwritten(s) <= '0';
+          idle           <= '1';
+          quiet          <= 7;
         end if;
       end if;
 
@@ -366,7 +385,7 @@ begin
 
       if rising_edge(clk) then
         if rst = '0' and queue_pop(s) = '1' then
-          assert current - (head_y - HALF) < ROWS
+          assert current - (head_y - HALF) < ROWS or TEST_FAULT /= "none"
             report "fastnms_orb_feed: a keypoint's rows were overwritten before it was read"
             severity error;
           assert 2 ** (4 + to_integer(cell_log)) <= MAX_CELL
@@ -385,7 +404,7 @@ begin
   -- records leave the plain queue in the same order as their columns. The
   -- tag queue never refuses one: a record waits in it only while its
   -- keypoint's columns are requested or wait in the rows' 16-word FIFO, so
-  -- it holds three at most (simulation checks it).
+  -- it holds three at most (a refusal raises err_tags; simulation stops).
   tags : process (clk) is
   begin
 
@@ -401,7 +420,7 @@ begin
   begin
 
     if rising_edge(clk) then
-      assert not (rst = '0' and tag_push = '1' and tag_room = '0')
+      assert not (rst = '0' and tag_push = '1' and tag_room = '0' and TEST_FAULT = "none")
         report "fastnms_orb_feed: the tag queue is full"
         severity failure;
     end if;
@@ -409,6 +428,23 @@ begin
   end process tag_check;
 
   -- pragma translate_on
+
+  -- (TEST_FAULT "tags": a queue of one record.)
+  tag_taken <= tag_push and tag_room and not (to_sl(TEST_FAULT = "tags") and tag_valid);
+
+  errors : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      err_rows <= overwritten(0) or overwritten(1);
+      err_tags <= tag_push and not tag_taken;
+      if rst = '1' then
+        err_rows <= '0';
+        err_tags <= '0';
+      end if;
+    end if;
+
+  end process errors;
 
   tag_queue : entity work.fastnms_fifo
     generic map (
@@ -419,7 +455,7 @@ begin
     port map (
       clk       => clk,
       rst       => rst,
-      in_valid  => tag_push,
+      in_valid  => tag_taken,
       in_ready  => tag_room,
       in_data   => tag_pushed,
       out_valid => tag_valid,

@@ -1,6 +1,7 @@
 -- ORB in the core: the budget's records in, each with its angle and
 -- descriptor out, then the frame's end-of-frame beat; a queue of a cell
--- row's records in front of fastnms_orb_feed.
+-- row's records in front of fastnms_orb_feed; flags the internal errors
+-- that would corrupt a record (err_rows, err_tags, err_count).
 -- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
@@ -16,7 +17,11 @@ entity fastnms_orb_stage is
     SCORE_BITS   : positive := 8;
     LANES        : positive := 8;
     MAX_CELL     : positive := 16;
-    MAX_PER_CELL : positive := 15
+    MAX_PER_CELL : positive := 15;
+    -- Tests only: "none"; "rows" and "tags" (fastnms_orb_feed); "count": a
+    -- keypoint that comes in while two are in flight is not counted (err_count
+    -- fires when a keypoint leaves that was not counted).
+    TEST_FAULT : string := "none"
   );
   port (
     clk : in    std_logic;
@@ -44,7 +49,12 @@ entity fastnms_orb_stage is
     out_eof        : out   std_logic;
     out_angle      : out   std_logic_vector(31 downto 0);
     out_descriptor : out   std_logic_vector(255 downto 0);
-    dropped        : out   std_logic
+    dropped        : out   std_logic;
+    -- Internal errors, one-clock pulses (registered): fastnms_orb_feed's,
+    -- and a keypoint left that the count of keypoints in flight did not hold.
+    err_rows  : out   std_logic;
+    err_tags  : out   std_logic;
+    err_count : out   std_logic
   );
 end entity fastnms_orb_stage;
 
@@ -60,6 +70,18 @@ architecture rtl of fastnms_orb_stage is
   -- Records in the queue and the feed: the queue's words, the feed's two
   -- queues of 16 and what its engine holds.
   constant MAX_PENDING : positive := 2 ** clog2(QUEUE_DEPTH) + 256;
+  -- The feed's own faults.
+
+  function feed_fault return string is
+  begin
+
+    if TEST_FAULT = "count" then
+      return "none";
+    end if;
+
+    return TEST_FAULT;
+
+  end function feed_fault;
 
   signal plain_ready   : std_logic;
   signal blurred_ready : std_logic;
@@ -88,6 +110,9 @@ begin
 
   assert MAX_PER_CELL <= 15
     report "fastnms_orb_stage: MAX_PER_CELL must be 1 .. 15"
+    severity failure;
+  assert TEST_FAULT = "none" or TEST_FAULT = "rows" or TEST_FAULT = "tags" or TEST_FAULT = "count"
+    report "fastnms_orb_stage: TEST_FAULT must be ""none"", ""rows"", ""tags"" or ""count"""
     severity failure;
 
   -- One image stream into the feed's two: a beat goes when both take it.
@@ -130,7 +155,8 @@ begin
       MAX_HEIGHT => MAX_HEIGHT,
       SCORE_BITS => SCORE_BITS,
       LANES      => LANES,
-      MAX_CELL   => MAX_CELL
+      MAX_CELL   => MAX_CELL,
+      TEST_FAULT => feed_fault
     )
     port map (
       clk            => clk,
@@ -157,7 +183,9 @@ begin
       out_y          => f_y,
       out_score      => f_score,
       out_angle      => f_angle,
-      out_descriptor => f_desc
+      out_descriptor => f_desc,
+      err_rows       => err_rows,
+      err_tags       => err_tags
     );
 
   -- The feed's records, then the held end of frame (none is in the feed
@@ -184,11 +212,18 @@ begin
 
     if rising_edge(clk) then
       count := pending;
-      if push = '1' then
+      if push = '1' and not (TEST_FAULT = "count" and pending >= 2) then
         count := count + 1;
       end if;
+      -- (A keypoint taken by the feed or leaving it that was not counted:
+      -- err_count; the count stays at 0.)
+      err_count <= q_taken and to_sl(pending = 0);
       if f_valid = '1' and f_ready = '1' then
-        count := count - 1;
+        if count = 0 then
+          err_count <= '1';
+        else
+          count := count - 1;
+        end if;
       end if;
       pending <= count;
 
@@ -201,8 +236,9 @@ begin
       end if;
 
       if rst = '1' then
-        pending  <= 0;
-        eof_held <= '0';
+        pending   <= 0;
+        eof_held  <= '0';
+        err_count <= '0';
       end if;
     end if;
 
@@ -214,7 +250,7 @@ begin
 
     if rising_edge(clk) then
       if rst = '0' then
-        assert not (q_taken = '1' and pending = 0)
+        assert not (q_taken = '1' and pending = 0) or TEST_FAULT /= "none"
           report "fastnms_orb_stage: a record left that was never counted"
           severity failure;
       end if;

@@ -22,7 +22,9 @@ entity fastnms_axi is
     PPC               : positive := 1;
     MAX_PER_CELL      : natural  := 0;
     DESCRIPTOR        : string   := "none";
-    ORB_MAX_CELL      : positive := 16
+    ORB_MAX_CELL      : positive := 16;
+    -- Tests only (fastnms_core's TEST_FAULT): "none" in a product.
+    TEST_FAULT : string := "none"
   );
   port (
     aclk    : in    std_logic;
@@ -243,6 +245,8 @@ architecture rtl of fastnms_axi is
   signal k_angle  : std_logic_vector(31 downto 0);
   signal k_desc   : std_logic_vector(255 downto 0);
   signal orb_drop : std_logic; -- the core dropped a keypoint (ORB, K = 0)
+  signal internal : std_logic_vector(INTERNAL_ERRORS - 1 downto 0);
+  signal faulted  : std_logic; -- an internal error (registered): reset the pipeline
 
   -- Records.
   signal open_frame : std_logic;
@@ -296,6 +300,11 @@ begin
          (DESCRIPTOR = "orb" and PPC = 1 and (NMS = "3x3" or NMS = "none") and MAX_PER_CELL > 0)
     report "fastnms_axi: DESCRIPTOR must be ""none"" or ""orb""; ""orb"" needs PPC 1, NMS ""3x3"" or ""none"" and MAX_PER_CELL > 0"
     severity failure;
+  -- (A larger K would hold the input at any CELL: BUDGET.PER_CELL is clamped
+  -- to the rate at the frame's CELL.)
+  assert DESCRIPTOR /= "orb" or MAX_PER_CELL <= orb_rate_per_cell(clog2(maximum(ORB_MAX_CELL, 16)) - 4)
+    report "fastnms_axi: with DESCRIPTOR ""orb"", MAX_PER_CELL must be at most ORB_MAX_CELL ** 2 / 64 (4 at ORB_MAX_CELL 16): the ORB engine's rate"
+    severity failure;
 
   -- ---- reset ---------------------------------------------------------------
 
@@ -321,12 +330,14 @@ begin
   end process port_mask;
 
   -- A soft reset holds the pipeline in reset until the record packer has
-  -- closed the frame it had open (at least one clock).
+  -- closed the frame it had open (at least one clock). An internal error
+  -- resets it the same way: the core recovers at the next start of frame.
   soft_reset : process (aclk) is
   begin
 
     if rising_edge(aclk) then
-      if soft_pulse = '1' then
+      faulted <= (or internal) and not pipe_rst;
+      if soft_pulse = '1' or faulted = '1' then
         soft_busy <= '1';
       elsif open_frame = '0' then
         soft_busy <= '0';
@@ -334,6 +345,7 @@ begin
 
       if rst = '1' then
         soft_busy <= '0';
+        faulted   <= '0';
       end if;
     end if;
 
@@ -426,6 +438,7 @@ begin
       evt_overflow    => r_overflow,
       evt_dropped     => dropped,
       evt_stall       => stalled,
+      evt_internal    => internal,
       out_record      => out_record,
       out_last        => out_last,
       interrupt       => irq
@@ -545,7 +558,8 @@ begin
       PPC          => PPC,
       MAX_PER_CELL => MAX_PER_CELL,
       DESCRIPTOR   => DESCRIPTOR,
-      ORB_MAX_CELL => ORB_MAX_CELL
+      ORB_MAX_CELL => ORB_MAX_CELL,
+      TEST_FAULT   => TEST_FAULT
     )
     port map (
       clk            => aclk,
@@ -577,7 +591,8 @@ begin
       tap_sof        => t_sof,
       tap_eol        => t_eol,
       err_line       => open,
-      err_frame      => open
+      err_frame      => open,
+      internal_error => internal
     );
 
   -- ---- corner records ----------------------------------------------------------
@@ -607,6 +622,7 @@ begin
       in_angle      => k_angle,
       in_descriptor => k_desc,
       in_dropped    => orb_drop,
+      in_error      => faulted,
       out_valid     => r_valid,
       out_ready     => m_axis_corners_tready and ports_on,
       out_data      => m_axis_corners_tdata,

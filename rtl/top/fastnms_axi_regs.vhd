@@ -58,9 +58,11 @@ entity fastnms_axi_regs is
     evt_overflow    : in    std_logic;
     evt_dropped     : in    std_logic;
     evt_stall       : in    std_logic;
-    out_record      : in    std_logic;
-    out_last        : in    std_logic;
-    interrupt       : out   std_logic
+    -- fastnms_core's internal_error (STATUS bits ORB_ROWS .. CONFIG_QUEUE)
+    evt_internal : in    std_logic_vector(INTERNAL_ERRORS - 1 downto 0);
+    out_record   : in    std_logic;
+    out_last     : in    std_logic;
+    interrupt    : out   std_logic
   );
 end entity fastnms_axi_regs;
 
@@ -221,9 +223,9 @@ architecture rtl of fastnms_axi_regs is
   signal k_active      : unsigned(3 downto 0);
   signal area_shadow   : unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
   signal area_active   : unsigned(MIN_AREA_VALUE_WIDTH - 1 downto 0);
-  signal sticky        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
-  signal events        : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
-  signal clear_mask    : std_logic_vector(STATUS_OVERFLOW downto STATUS_FRAME_DONE);
+  signal sticky        : std_logic_vector(STATUS_CONFIG_QUEUE downto STATUS_FRAME_DONE);
+  signal events        : std_logic_vector(STATUS_CONFIG_QUEUE downto STATUS_FRAME_DONE);
+  signal clear_mask    : std_logic_vector(STATUS_CONFIG_QUEUE downto STATUS_FRAME_DONE);
   signal busy_r        : std_logic;
   signal key_ok        : std_logic;
 
@@ -259,6 +261,9 @@ begin
     severity failure;
   assert DESCRIPTOR = "none" or DESCRIPTOR = "orb"
     report "fastnms_axi_regs: DESCRIPTOR must be ""none"" or ""orb"""
+    severity failure;
+  assert not ORB or orb_rate_per_cell(1) = 15
+    report "fastnms_axi_regs: the K clamp takes the ORB rate below 15 at CELL 16 only"
     severity failure;
   assert ORB_MAX_CELL >= 16
     report "fastnms_axi_regs: ORB_MAX_CELL must be at least 16"
@@ -353,12 +358,16 @@ begin
                 (others => '0');
   events     <=
   (
-    STATUS_FRAME_DONE  => done_pulse,
-    STATUS_EOL_EARLY   => evt_eol_early,
-    STATUS_EOL_LATE    => evt_eol_late,
-    STATUS_SOF_MISSING => evt_sof_missing,
-    STATUS_SOF_EARLY   => evt_sof_early,
-    STATUS_OVERFLOW    => evt_overflow
+    STATUS_FRAME_DONE   => done_pulse,
+    STATUS_EOL_EARLY    => evt_eol_early,
+    STATUS_EOL_LATE     => evt_eol_late,
+    STATUS_SOF_MISSING  => evt_sof_missing,
+    STATUS_SOF_EARLY    => evt_sof_early,
+    STATUS_OVERFLOW     => evt_overflow,
+    STATUS_ORB_ROWS     => evt_internal(INTERNAL_ORB_ROWS),
+    STATUS_ORB_TAGS     => evt_internal(INTERNAL_ORB_TAGS),
+    STATUS_ORB_COUNT    => evt_internal(INTERNAL_ORB_COUNT),
+    STATUS_CONFIG_QUEUE => evt_internal(INTERNAL_CONFIG_QUEUE)
   );
 
   registers : process (clk) is
@@ -401,6 +410,10 @@ begin
         if w_sel(REG_BUDGET) = '1' then
           cell_shadow <= bu_cell_log;
           k_shadow    <= bu_per_cell;
+          -- With ORB, K no higher than the engine's rate at this CELL (4 at 16).
+          if ORB and bu_per_cell > orb_rate_per_cell(0) and bu_cell_log = 0 then
+            k_shadow <= to_unsigned(orb_rate_per_cell(0), 4);
+          end if;
         end if;
         if w_sel(REG_MIN_AREA) = '1' then
           for i in area_shadow'range loop
@@ -423,7 +436,8 @@ begin
 
       sticky    <= (sticky and not clear_mask) or events;
       busy_r    <= busy;
-      interrupt <= irq_enable and sticky(STATUS_FRAME_DONE);
+      interrupt <= irq_enable and (sticky(STATUS_FRAME_DONE) or
+                                   (or sticky(STATUS_CONFIG_QUEUE downto STATUS_ORB_ROWS)));
 
       if rst = '1' then
         enable_r      <= CTRL_ENABLE_RESET;

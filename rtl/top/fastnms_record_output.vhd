@@ -35,6 +35,7 @@ entity fastnms_record_output is
     in_angle      : in    std_logic_vector(31 downto 0);
     in_descriptor : in    std_logic_vector(255 downto 0);
     in_dropped    : in    std_logic; -- the core's ORB stage dropped a keypoint
+    in_error      : in    std_logic; -- an internal error: ERROR on the next last record
     -- the records' beats (m_axis_corners; out_last on a frame's last beat)
     out_valid : out   std_logic;
     out_ready : in    std_logic;
@@ -83,9 +84,10 @@ architecture rtl of fastnms_record_output is
   constant EXTRA_BITS   : positive := maximum(1, PAYLOAD_BITS);
   constant FIELD_BITS   : positive := X_BITS + Y_BITS + SCORE_BITS;
   -- A record from the packer: kind (2 bits, see fastnms_corner_pack), lost,
-  -- x, y, score, extra; in the FIFO: overflow, kind, x, y, score, payload.
+  -- x, y, score, extra; in the FIFO: error, overflow, kind, x, y, score,
+  -- payload.
   constant PACKED_BITS : positive := 3 + FIELD_BITS + EXTRA_BITS;
-  constant FIFO_BITS   : positive := 3 + FIELD_BITS + PAYLOAD_BITS;
+  constant FIFO_BITS   : positive := 4 + FIELD_BITS + PAYLOAD_BITS;
   constant BEATS       : positive := record_beats;
   -- The FIFO's RAM words, all asked for; almost_full = '0' promises room for
   -- this record and one more whenever it comes (fastnms_fifo: R - 1 = 2).
@@ -112,6 +114,9 @@ architecture rtl of fastnms_record_output is
   signal q_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
   signal drop    : std_logic;
   signal lost    : std_logic;                     -- records dropped since the last LAST record stored
+  signal errored : std_logic;                     -- an internal error since the last LAST record stored
+  signal p_error : std_logic;
+  signal f_error : std_logic;
   signal f_valid : std_logic;
   signal f_ready : std_logic;
   signal f_data  : std_logic_vector(FIFO_BITS - 1 downto 0);
@@ -224,13 +229,14 @@ begin
   q_valid <= p_valid and (q_fits or not live);
   drop    <= p_valid and live and not q_fits;
   p_over  <= p_last and (lost or drop or p_lost);
+  p_error <= p_last and errored;
 
   fifo_in_payload : if PAYLOAD_BITS > 0 generate
-    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto 0);
+    q_data <= p_error & p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto 0);
   end generate fifo_in_payload;
 
   fifo_in_fields : if PAYLOAD_BITS = 0 generate
-    q_data <= p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto EXTRA_BITS);
+    q_data <= p_error & p_over & p_kind & p_data(FIELD_BITS + EXTRA_BITS - 1 downto EXTRA_BITS);
   end generate fifo_in_fields;
 
   drops : process (clk) is
@@ -238,7 +244,11 @@ begin
 
     if rising_edge(clk) then
       if q_valid = '1' and q_ready = '1' and p_last = '1' then
-        lost <= '0';
+        lost    <= '0';
+        errored <= '0';
+      end if;
+      if in_error = '1' then
+        errored <= '1';
       end if;
       if drop = '1' then
         lost <= '1';
@@ -252,6 +262,7 @@ begin
 
       if rst = '1' then
         lost      <= '0';
+        errored   <= '0';
         dropped   <= '0';
         drop_owed <= '0';
       end if;
@@ -302,8 +313,9 @@ begin
 
   -- ---- record format -------------------------------------------------------------
 
-  f_over  <= f_data(FIFO_BITS - 1);
-  f_kind  <= f_data(FIFO_BITS - 2 downto FIFO_BITS - 3);
+  f_error <= f_data(FIFO_BITS - 1);
+  f_over  <= f_data(FIFO_BITS - 2);
+  f_kind  <= f_data(FIFO_BITS - 3 downto FIFO_BITS - 4);
   f_empty <= f_kind(1) and f_kind(0);
   f_last  <= f_kind(1) or f_kind(0);
 
@@ -322,6 +334,7 @@ begin
     f_word(REC_LAST)                                            <= f_last;
     f_word(REC_ABORTED)                                         <= f_kind(1) and not f_kind(0);
     f_word(REC_OVERFLOW)                                        <= f_over;
+    f_word(REC_ERROR)                                           <= f_error;
     f_word(REC_ORB)                                             <= to_sl(ORB) and not f_empty;
 
     if AREA then

@@ -58,20 +58,28 @@ package fastnms_regs_pkg is
   constant CTRL_LIVE_RESET       : std_logic := '0';
 
   -- STATUS: Status; the sticky bits are cleared by writing 1.
-  constant STATUS_BUSY              : natural   := 0;
-  constant STATUS_BUSY_RESET        : std_logic := '0';
-  constant STATUS_FRAME_DONE        : natural   := 1;
-  constant STATUS_FRAME_DONE_RESET  : std_logic := '0';
-  constant STATUS_EOL_EARLY         : natural   := 2;
-  constant STATUS_EOL_EARLY_RESET   : std_logic := '0';
-  constant STATUS_EOL_LATE          : natural   := 3;
-  constant STATUS_EOL_LATE_RESET    : std_logic := '0';
-  constant STATUS_SOF_MISSING       : natural   := 4;
-  constant STATUS_SOF_MISSING_RESET : std_logic := '0';
-  constant STATUS_SOF_EARLY         : natural   := 5;
-  constant STATUS_SOF_EARLY_RESET   : std_logic := '0';
-  constant STATUS_OVERFLOW          : natural   := 6;
-  constant STATUS_OVERFLOW_RESET    : std_logic := '0';
+  constant STATUS_BUSY               : natural   := 0;
+  constant STATUS_BUSY_RESET         : std_logic := '0';
+  constant STATUS_FRAME_DONE         : natural   := 1;
+  constant STATUS_FRAME_DONE_RESET   : std_logic := '0';
+  constant STATUS_EOL_EARLY          : natural   := 2;
+  constant STATUS_EOL_EARLY_RESET    : std_logic := '0';
+  constant STATUS_EOL_LATE           : natural   := 3;
+  constant STATUS_EOL_LATE_RESET     : std_logic := '0';
+  constant STATUS_SOF_MISSING        : natural   := 4;
+  constant STATUS_SOF_MISSING_RESET  : std_logic := '0';
+  constant STATUS_SOF_EARLY          : natural   := 5;
+  constant STATUS_SOF_EARLY_RESET    : std_logic := '0';
+  constant STATUS_OVERFLOW           : natural   := 6;
+  constant STATUS_OVERFLOW_RESET     : std_logic := '0';
+  constant STATUS_ORB_ROWS           : natural   := 7;
+  constant STATUS_ORB_ROWS_RESET     : std_logic := '0';
+  constant STATUS_ORB_TAGS           : natural   := 8;
+  constant STATUS_ORB_TAGS_RESET     : std_logic := '0';
+  constant STATUS_ORB_COUNT          : natural   := 9;
+  constant STATUS_ORB_COUNT_RESET    : std_logic := '0';
+  constant STATUS_CONFIG_QUEUE       : natural   := 10;
+  constant STATUS_CONFIG_QUEUE_RESET : std_logic := '0';
 
   -- THRESHOLD: FAST threshold t, for the frames whose first pixel is accepted after the write's
   -- B response.
@@ -179,7 +187,8 @@ package fastnms_regs_pkg is
   constant REC_Y_LSB            : natural  := 16;
   constant REC_Y_WIDTH          : positive := 16;
   constant REC_SCORE_LSB        : natural  := 32;
-  constant REC_SCORE_WIDTH      : positive := 16;
+  constant REC_SCORE_WIDTH      : positive := 12;
+  constant REC_ERROR            : natural  := 44;
   constant REC_EMPTY            : natural  := 48;
   constant REC_LAST             : natural  := 49;
   constant REC_ABORTED          : natural  := 50;

@@ -15,7 +15,7 @@ from fastnms.golden.budget import hardware_order
 from fastnms.golden.image import load_grey
 from fastnms.golden.model import NMS_MODES, SCORES, detect
 from fastnms.sim import regs
-from fastnms.sim.run import SimResult, check_size, generics_for, run_rtl
+from fastnms.sim.run import SimResult, budget_in_effect, check_size, generics_for, run_rtl
 from fastnms.sim.timing import Pattern, Timing
 from fastnms.testing import images as testimages
 
@@ -364,8 +364,9 @@ def test_netlist_bit_strings_become_binary_literals():
 
 
 def test_orb_rate_bound_with_blanking(rng, seed):
-    """ORB at 1920x1080 (opencv + 3x3, CELL 16, K 4 = CELL x CELL / 64, the engine's 64
-    clocks per keypoint): noise at t = 0, two frames back to back with 1080p60's blanking
+    """ORB at 1920x1080 (opencv + 3x3, CELL 16, BUDGET written with K 15, which the top
+    clamps to 4 = CELL x CELL / 64, the engine's 64 clocks per keypoint; a build with
+    MAX_PER_CELL 15): noise at t = 0, two frames back to back with 1080p60's blanking
     (280 clocks after each line, 45 lines of 2200 clocks after each frame): the input is
     never held, the second frame's keypoints equal the golden model's (angles and
     descriptors), and every keypoint's record leaves within CELL + 22 lines of its
@@ -377,8 +378,9 @@ def test_orb_rate_bound_with_blanking(rng, seed):
     frames = [(testimages.noise(rng, 1920, 1080), 0) for _ in range(2)]
     generics = generics_for("opencv", "3x3", orb=True)
     timing = Timing(hblank=280, vblank=45 * 2200)
-    result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=(16, 4), timing=timing)
+    result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=(16, 15), timing=timing)
     assert [f.input_stalls for f in result.frames] == [0, 0], f"seed {seed}"
+    assert budget_in_effect(16, 15, generics) == (16, 4)
     img, t = frames[1]
     want = orb_features(img, t, "opencv", "3x3", cell=16, per_cell=4)
     got = result.frames[1]

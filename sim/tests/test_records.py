@@ -38,7 +38,7 @@ def test_areas_decode_with_their_corners():
     words = [
         word(5, 3, 40, 1),
         word(9, 4, 30, AREA_MAX),
-        word(0xFFFF, 0xFFFF, 0xFFFF, AREA_MAX),  # every bit of x, y, score and area
+        word(0xFFFF, 0xFFFF, 0xFFF, AREA_MAX),  # every bit of x, y, score and area
         word(7, 9, 50, 0, last=True),  # AREA 0: the other NMS
         EMPTY,
         word(3, 3, 20, 12, last=True),
@@ -47,7 +47,7 @@ def test_areas_decode_with_their_corners():
     frames = decode_records(words)
     assert len(frames) == 3
     first, empty, last = frames
-    assert first.corners == [(5, 3, 40), (9, 4, 30), (0xFFFF, 0xFFFF, 0xFFFF), (7, 9, 50)]
+    assert first.corners == [(5, 3, 40), (9, 4, 30), (0xFFFF, 0xFFFF, 0xFFF), (7, 9, 50)]
     assert first.areas == [1, AREA_MAX, AREA_MAX, 0]
     assert not first.malformed and first.flags == []
     assert empty.flags == ["empty"] and empty.corners == [] and empty.areas == []

@@ -30,6 +30,7 @@ static void print_frame(const struct fastnms_frame *f)
         {FASTNMS_FRAME_OVERFLOW, "overflow"},     {FASTNMS_FRAME_INCOMPLETE, "incomplete"},
         {FASTNMS_FRAME_MALFORMED, "malformed"},   {FASTNMS_FRAME_TRUNCATED, "truncated"},
         {FASTNMS_FRAME_ORB, "orb"},
+        {FASTNMS_FRAME_ERROR, "error"},
     };
     const char *sep = "";
     size_t i;

@@ -20,7 +20,7 @@ from fastnms.testing import images as testimages
 from fastnms.testing.fixtures import SEED
 
 # The order of the C decoder's flag bits (FASTNMS_FRAME_*) in its output.
-C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated", "orb"]
+C_FLAGS = ["empty", "aborted", "overflow", "incomplete", "malformed", "truncated", "orb", "error"]
 
 
 def rec(
@@ -275,17 +275,17 @@ def test_areas(c_programs, tmp_path):
     """The region NMS's AREA (bits 63:53, saturating at 2047) with each corner, whatever
     the pieces; 0 for a record without it; the EMPTY record has none."""
     assert (regs.REC_AREA.lsb, regs.REC_AREA.width) == (53, 11)
-    assert regs.REC_AREA.lsb + regs.REC_AREA.width == 64  # beat 0 has no reserved bit left
+    assert regs.REC_AREA.lsb + regs.REC_AREA.width == 64  # AREA ends at bit 63
     words = [
         rec(3, 4, 5, area=1),
-        rec(0xFFFF, 0xFFFF, 0xFFFF, area=2047),  # every field at its largest
+        rec(0xFFFF, 0xFFFF, 0xFFF, area=2047),  # every field at its largest
         rec(6, 7, 8),  # AREA 0: another NMS
         rec(9, 10, 11, area=1024, last=True),
         EMPTY,
         rec(12, 13, 14, area=2, last=True, aborted=True),
     ]
     first, empty, aborted = decoded(c_programs, tmp_path, words, chunks=(0, 1, 2, 4))
-    assert first.corners == [(3, 4, 5), (0xFFFF, 0xFFFF, 0xFFFF), (6, 7, 8), (9, 10, 11)]
+    assert first.corners == [(3, 4, 5), (0xFFFF, 0xFFFF, 0xFFF), (6, 7, 8), (9, 10, 11)]
     assert first.areas == [1, 2047, 0, 1024] and first.flags == []
     assert empty.flags == ["empty"] and empty.corners == [] and empty.areas == []
     assert aborted.flags == ["aborted"] and aborted.areas == [2]
@@ -293,7 +293,7 @@ def test_areas(c_programs, tmp_path):
     (orb,) = decoded(c_programs, tmp_path, orb_record(40, 31, 27, 1, bytes(32), last=True))
     assert orb.areas == [0]
     got = c_stream(c_programs, tmp_path, words, 0)
-    assert "65535 65535 65535 area 2047\n" in got and "6 7 8\n" in got
+    assert "65535 65535 4095 area 2047\n" in got and "6 7 8\n" in got
 
 
 def orb_record(x, y, score, angle_bits: int, descriptor: bytes, **flags) -> list[int]:

@@ -24,6 +24,7 @@ from cocotbext.axi import AxiStreamFrame
 from fastnms.golden.model import detect
 from fastnms.sim import regs
 from fastnms.sim.driver import AxiTop, Record, decode
+from fastnms.sim.run import budget_in_effect
 from fastnms.testing import images as testimages
 
 from tb.video import min_width
@@ -62,12 +63,12 @@ def all_generics() -> dict[str, object]:
 
 
 def budget_register(merged: int) -> int:
-    """BUDGET after a write whose merged value is `merged`: PER_CELL clamped to
-    MAX_PER_CELL; CELL clamped to 16 .. 256 (bits 31:25 count), then rounded
-    down to a power of two."""
+    """BUDGET after a write whose merged value is `merged`: CELL clamped to 16 .. 256
+    (bits 31:25 count), then rounded down to a power of two; then both clamped as the
+    build does (budget_in_effect: MAX_PER_CELL, with ORB ORB_MAX_CELL and the rate)."""
     cell = min(merged >> regs.BUDGET_CELL.lsb, 256)
     cell = 1 << max(4, cell.bit_length() - 1)
-    k = min(regs.BUDGET_PER_CELL.get(merged), MAX_PER_CELL)
+    cell, k = budget_in_effect(cell, regs.BUDGET_PER_CELL.get(merged), all_generics())
     return k << regs.BUDGET_PER_CELL.lsb | cell << regs.BUDGET_CELL.lsb
 
 

@@ -25,6 +25,7 @@ from fastnms.golden.image import load_grey
 from fastnms.sim import regs
 from fastnms.sim.driver import AxiTop, record_words
 from fastnms.sim.records import Frame, decode_records
+from fastnms.sim.run import budget_in_effect
 from fastnms.testing import images as testimages
 
 from tb.orb.patches import budget_order, random_crop
@@ -45,8 +46,9 @@ FRAME_CLOCKS = 4 * MAX_WIDTH * MAX_HEIGHT + 20_000
 
 def model(img: np.ndarray, t: int, cell: int, k: int) -> list[tuple]:
     """orb_features' keypoints in the budget's order: (x, y, score, angle bits, descriptor
-    as an int, bit i = pair i); CELL and K clamped as the BUDGET register does."""
-    cell = min(cell, ORB_MAX_CELL)
+    as an int, bit i = pair i); CELL and K clamped as the BUDGET register does
+    (ORB_MAX_CELL, MAX_PER_CELL, the ORB engine's rate)."""
+    cell, k = budget_in_effect(cell, k, GENERICS)
     return budget_order(orb.orb_features(img, t, SCORE, NMS, cell=cell, per_cell=k), cell)
 
 
@@ -111,10 +113,13 @@ async def orb_records(dut):
 
     mode = await tb.read(regs.MODE)
     assert regs.MODE_DESCRIPTOR.get(mode) == regs.MODE_DESCRIPTOR_VALUES["orb"]
-    await tb.write(regs.BUDGET, 256 << regs.BUDGET_CELL.lsb | 15 << regs.BUDGET_PER_CELL.lsb)
-    budget = await tb.read(regs.BUDGET)
-    assert regs.BUDGET_CELL.get(budget) == ORB_MAX_CELL, f"BUDGET 0x{budget:08x}"
-    assert regs.BUDGET_PER_CELL.get(budget) == MAX_PER_CELL, f"BUDGET 0x{budget:08x}"
+    # BUDGET reads back the (CELL, K) in use: CELL at most ORB_MAX_CELL, K at most
+    # MAX_PER_CELL and the engine's rate at that CELL (4 at CELL 16).
+    for cell in (256, 16):
+        await tb.write(regs.BUDGET, cell << regs.BUDGET_CELL.lsb | 15 << regs.BUDGET_PER_CELL.lsb)
+        budget = await tb.read(regs.BUDGET)
+        got = regs.BUDGET_CELL.get(budget), regs.BUDGET_PER_CELL.get(budget)
+        assert got == budget_in_effect(cell, 15, GENERICS), f"BUDGET 0x{budget:08x}"
 
     crop = random_crop(rng, photos, max(w, h))[:h, :w]
     frames = [

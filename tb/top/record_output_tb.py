@@ -54,7 +54,7 @@ class TB:
         cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
         dut.in_valid.value = 0
         dut.out_ready.value = 0
-        for name in ("pipe_rst", "abort", "live", "in_eof", "in_dropped"):
+        for name in ("pipe_rst", "abort", "live", "in_eof", "in_dropped", "in_error"):
             getattr(dut, name).value = 0
         for name in ("in_x", "in_y", "in_score", "in_area", "in_angle", "in_descriptor"):
             getattr(dut, name).value = 0

@@ -47,6 +47,7 @@ MODULE = {
     ),
     **dict.fromkeys(["live_mode", "live_config_writes"], "axi_live_tb"),
     "budget_frames": "axi_budget_tb",
+    **dict.fromkeys(["internal_error", "resets_mid_frame"], "axi_errors_tb"),
 }
 
 
@@ -289,7 +290,8 @@ def test_axi_live_1920(request):
 
 
 # DESCRIPTOR "orb": 128x80 frames (ORB's 31-pixel border leaves a 66x18 interior), a
-# corner FIFO of 8 records (48 beats).
+# corner FIFO of 8 records (48 beats), K up to 4 (the queue of a cell row's records
+# is small enough that K = 0 on noise overflows it).
 ORB_SMALL = {
     "MAX_WIDTH": 128,
     "MAX_HEIGHT": 80,
@@ -340,6 +342,54 @@ def test_axi_orb(request, tmp_path, score, nms):
     assert out.returncode == 0, out.stderr
     got = [line for line in out.stdout.splitlines() if not line.startswith("frame ")]
     assert got == want, "the C decoder's keypoints differ from the Python decoder's"
+
+
+# The internal errors, each forced by a test-only fault (TEST_FAULT): ORB's at 128 wide
+# and 160 tall (the rows' fault needs a frame taller than ORB's rows at CELL 16), the
+# configuration queue's with the budget and no ORB. ORB's tags and count (2-3 min each)
+# in make test-full.
+ORB_FAULTY = {
+    **ORB_SMALL,
+    "MAX_HEIGHT": 160,
+    "ORB_MAX_CELL": 16,
+    "SCORE": "opencv",
+    "NMS": "3x3",
+}
+BUDGET_FAULTY = {
+    "MAX_WIDTH": 64,
+    "MAX_HEIGHT": 48,
+    "CORNER_FIFO_DEPTH": 64,
+    "MAX_PER_CELL": 4,
+    "SCORE": "opencv",
+    "NMS": "3x3",
+}
+
+
+@pytest.mark.parametrize(
+    ("generics", "fault"),
+    [
+        pytest.param(ORB_FAULTY, "rows", id="orb-rows"),
+        pytest.param(ORB_FAULTY, "tags", marks=pytest.mark.slow, id="orb-tags"),
+        pytest.param(ORB_FAULTY, "count", marks=pytest.mark.slow, id="orb-count"),
+        pytest.param(BUDGET_FAULTY, "config", id="budget-config"),
+    ],
+)
+def test_axi_internal_error(request, generics, fault):
+    """Each internal error, forced: its STATUS bit, the interrupt, ERROR on one frame's
+    last record, the pipeline reset, and the next frames exact (tb/top/axi_errors_tb.py)."""
+    run_axi(
+        request,
+        {**generics, "TEST_FAULT": fault},
+        "internal_error",
+        env={"TB_IDLE": "0.1", "TB_STALL": "0.2"},
+    )
+
+
+def test_axi_orb_resets_mid_frame(request):
+    """ORB: CMD.SOFT_RESET and aresetn while keypoints are in ORB; the next frames exact
+    (tb/top/axi_errors_tb.py)."""
+    generics = {**ORB_FAULTY, "MAX_HEIGHT": 80}
+    run_axi(request, generics, "resets_mid_frame", env={"TB_IDLE": "0.1", "TB_STALL": "0.2"})
 
 
 def c_decoder(where: Path) -> Path:
