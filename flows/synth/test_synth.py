@@ -268,10 +268,16 @@ def test_orb_entries_have_the_cores_generics():
     }
     stage = rows["fastnms_orb_stage"].generics
     core = (Path(__file__).resolve().parents[2] / "rtl" / "core" / "fastnms_core.vhd").read_text()
-    lanes = re.search(
-        r"orb_keypoints : entity work.fastnms_orb_stage.*?LANES\s*=>\s*(\d+)", core, re.S
+    assert re.search(
+        r"orb_keypoints : entity work.fastnms_orb_stage.*?LANES\s*=>\s*ORB_LANES", core, re.S
     )
+    pkg = (Path(__file__).resolve().parents[2] / "rtl" / "common" / "fastnms_pkg.vhd").read_text()
+    lanes = re.search(r"constant ORB_LANES\s*:\s*positive\s*:=\s*(\d+)", pkg)
     assert lanes and stage["LANES"] == int(lanes.group(1))
+    # The K clamp's rate in the Python tools: the engine's 512 / ORB_LANES clocks.
+    from fastnms.sim.run import ORB_KEYPOINT_CLOCKS
+
+    assert 512 // int(lanes.group(1)) == ORB_KEYPOINT_CLOCKS
     assert stage["MAX_CELL"] == top.generics["ORB_MAX_CELL"]  # 2 ** (ORB_CELL_LOG + 4)
     assert stage["MAX_PER_CELL"] == top.generics["MAX_PER_CELL"]
     assert stage["SCORE_BITS"] == 8  # opencv

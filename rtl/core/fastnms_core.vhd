@@ -132,9 +132,15 @@ architecture rtl of fastnms_core is
   signal cfg_tag : std_logic_vector(AREA_BITS + 6 downto 0);
   signal d_tag   : std_logic_vector(AREA_BITS + 6 downto 0);
   -- That configuration at the NMS's output, from the frame's first record
-  -- to its end-of-frame beat (a queue, with the budget or the region NMS).
+  -- to its end-of-frame beat (a queue, with the budget or the region NMS),
+  -- with ORB's border in the frame (its first x and y past it; a synthesis
+  -- tool removes them without ORB).
   signal q_valid : std_logic;
   signal q_tag   : std_logic_vector(d_tag'range);
+  signal x_end   : unsigned(cfg_width'range);
+  signal y_end   : unsigned(cfg_height'range);
+  signal q_x_end : unsigned(cfg_width'range);
+  signal q_y_end : unsigned(cfg_height'range);
   -- The NMS's output, before the budget.
   signal s_valid : std_logic;
   signal s_ready : std_logic;
@@ -149,13 +155,10 @@ architecture rtl of fastnms_core is
   signal n_valid : std_logic;
   signal n_ready : std_logic;
   signal t_ready : std_logic;
-  -- With ORB: its image stream (the third side of the fork), the detector's
-  -- next frame held while one is in ORB, the NMS's records inside ORB's
-  -- border, and the budget's output.
+  -- With ORB: its image stream (the third side of the fork), the NMS's
+  -- records inside ORB's border, and the budget's output.
   signal i_valid   : std_logic;
   signal i_ready   : std_logic;
-  signal d_hold    : std_logic;
-  signal d_go      : std_logic;
   signal keep      : std_logic;
   signal k_valid   : std_logic;
   signal k_ready   : std_logic;
@@ -258,11 +261,10 @@ begin
   -- take it (each side's valid waits for the others' readies).
   t_ready   <= tap_ready when SCORE_TAP else
                '1';
-  d_go      <= d_valid and not d_hold;
-  d_ready   <= n_ready and t_ready and i_ready and not d_hold;
-  n_valid   <= d_go and t_ready and i_ready;
-  i_valid   <= d_go and n_ready and t_ready;
-  tap_valid <= d_go and n_ready and i_ready when SCORE_TAP else
+  d_ready   <= n_ready and t_ready and i_ready;
+  n_valid   <= d_valid and t_ready and i_ready;
+  i_valid   <= d_valid and n_ready and t_ready;
+  tap_valid <= d_valid and n_ready and i_ready when SCORE_TAP else
                '0';
   -- Without SCORE_TAP the tap outputs are constant.
   tap_score <= d_score when SCORE_TAP else
@@ -376,6 +378,8 @@ begin
   no_config_queue : if MAX_PER_CELL = 0 and not REGION generate
     q_valid                               <= '1';
     q_tag                                 <= (others => '0');
+    q_x_end                               <= (others => '0');
+    q_y_end                               <= (others => '0');
     internal_error(INTERNAL_CONFIG_QUEUE) <= '0';
   end generate no_config_queue;
 
@@ -391,6 +395,7 @@ begin
     signal q_push  : std_logic;
     signal q_ready : std_logic;
     signal q_taken : std_logic;
+    signal q_out   : std_logic_vector(x_end'length + y_end'length + d_tag'length - 1 downto 0);
   begin
 
     q_push <= d_valid and d_ready and d_sof;
@@ -409,7 +414,7 @@ begin
     config_queue : entity work.fastnms_fifo
       generic map (
         DEPTH => 8,
-        WIDTH => d_tag'length,
+        WIDTH => q_out'length,
         STYLE => "distributed"
       )
       port map (
@@ -417,12 +422,16 @@ begin
         rst       => rst,
         in_valid  => q_taken,
         in_ready  => q_ready,
-        in_data   => d_tag,
+        in_data   => std_logic_vector(x_end) & std_logic_vector(y_end) & d_tag,
         out_valid => q_valid,
         out_ready => s_valid and s_ready and s_eof,
-        out_data  => q_tag,
+        out_data  => q_out,
         busy      => open
       );
+
+    q_tag   <= q_out(d_tag'range);
+    q_y_end <= unsigned(q_out(y_end'length + d_tag'length - 1 downto d_tag'length));
+    q_x_end <= unsigned(q_out(q_out'high downto y_end'length + d_tag'length));
 
     -- pragma translate_off
     queue_check : process (clk) is
@@ -502,8 +511,9 @@ begin
 
   no_orb : if not ORB generate
     i_ready        <= '1';
-    d_hold         <= '0';
     keep           <= '1';
+    x_end          <= (others => '0');
+    y_end          <= (others => '0');
     out_valid      <= k_valid;
     k_ready        <= out_ready;
     out_x          <= k_x;
@@ -521,26 +531,19 @@ begin
   end generate no_orb;
 
   with_orb : if ORB generate
-    -- The frame in ORB (from its first result to its end-of-frame beat out),
-    -- its size, ORB's border in it, and its budget's CELL and K = 0.
-    signal busy      : std_logic;
-    signal width     : unsigned(cfg_width'range);
-    signal height    : unsigned(cfg_height'range);
-    signal x_end     : unsigned(cfg_width'range);
-    signal y_end     : unsigned(cfg_height'range);
-    signal frame_log : unsigned(2 downto 0);
-    signal drop      : std_logic;
-    signal column    : unsigned(out_x'range);
-    signal img_x     : unsigned(out_x'range);
-    signal o_valid   : std_logic;
-    signal o_eof     : std_logic;
+    -- The image's column, and the ORB stage's output.
+    signal column  : unsigned(out_x'range);
+    signal img_x   : unsigned(out_x'range);
+    signal o_valid : std_logic;
+    signal o_eof   : std_logic;
   begin
 
-    d_hold <= d_sof and busy;
-    img_x  <= (others => '0') when d_sof = '1' else
-              column;
-    keep   <= s_eof or s_row_end or
-              to_sl(s_x >= EDGE and s_y >= EDGE and s_x < x_end and s_y < y_end);
+    img_x <= (others => '0') when d_sof = '1' else
+             column;
+    -- ORB's border, from the frame's own size at the NMS's output (the next
+    -- frame may be in the detector meanwhile).
+    keep <= s_eof or s_row_end or
+            to_sl(s_x >= EDGE and s_y >= EDGE and s_x < q_x_end and s_y < q_y_end);
 
     frames : process (clk) is
     begin
@@ -551,29 +554,20 @@ begin
           if d_eol = '1' then
             column <= (others => '0');
           end if;
-          if d_sof = '1' then
-            busy      <= '1';
-            width     <= d_width;
-            height    <= d_height;
-            frame_log <= unsigned(d_tag(6 downto 4));
-            drop      <= to_sl(unsigned(d_tag(3 downto 0)) = 0);
-          end if;
         end if;
-        -- (A frame no wider or taller than 2 EDGE has no keypoint inside.)
+        -- The border of the detector's frame, queued with its first pixel
+        -- (d_width and d_height hold 10 clocks before it). A frame no wider
+        -- or taller than 2 EDGE has no keypoint inside.
         x_end <= to_unsigned(EDGE, x_end'length);
-        if width > 2 * EDGE then
-          x_end <= width - EDGE;
+        if d_width > 2 * EDGE then
+          x_end <= d_width - EDGE;
         end if;
         y_end <= to_unsigned(EDGE, y_end'length);
-        if height > 2 * EDGE then
-          y_end <= height - EDGE;
-        end if;
-        if o_valid = '1' and out_ready = '1' and o_eof = '1' then
-          busy <= '0';
+        if d_height > 2 * EDGE then
+          y_end <= d_height - EDGE;
         end if;
 
         if rst = '1' then
-          busy   <= '0';
           column <= (others => '0');
         end if;
       end if;
@@ -599,8 +593,8 @@ begin
         img_x          => img_x,
         img_pixel      => d_pixel(7 downto 0),
         img_blurred    => d_blurred(7 downto 0),
-        cfg_cell_log   => frame_log,
-        cfg_drop       => drop,
+        cfg_cell_log   => unsigned(d_tag(6 downto 4)),
+        cfg_drop       => to_sl(unsigned(d_tag(3 downto 0)) = 0),
         in_valid       => k_valid,
         in_ready       => k_ready,
         in_x           => k_x,

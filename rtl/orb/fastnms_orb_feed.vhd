@@ -1,7 +1,8 @@
 -- ORB after the budget: the image and its blur in, kept keypoints in, each
 -- with its angle and descriptor out; keeps the rows a keypoint's columns are
--- read from and never overwrites one unread; flags the internal errors
--- that would corrupt a record (err_rows, err_tags).
+-- read from (numbered on across frames, so the next frame's rows come in
+-- while a frame's last keypoints are read) and never overwrites one unread;
+-- flags the internal errors that would corrupt a record (err_rows, err_tags).
 -- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
@@ -47,7 +48,13 @@ entity fastnms_orb_feed is
     key_y     : in    unsigned(bits_for(MAX_HEIGHT) - 1 downto 0);
     key_score : in    unsigned(SCORE_BITS - 1 downto 0);
     -- log2(CELL) - 4 of the budget the keypoints come from (0: CELL 16 .. 4: 256).
-    cell_log       : in    unsigned(2 downto 0);
+    cell_log : in    unsigned(2 downto 0);
+    -- A pulse after a frame's last keypoint is taken, at least a clock before
+    -- the next frame's first: the keypoints after it are the next frame's.
+    -- A frame's keypoints come after its first pixel on both streams; the
+    -- first pixel of a third frame waits for the pulse of the first (two
+    -- frames open at most).
+    key_frame_end  : in    std_logic;
     out_valid      : out   std_logic;
     out_ready      : in    std_logic;
     out_x          : out   unsigned(clog2(MAX_WIDTH) - 1 downto 0);
@@ -91,7 +98,61 @@ architecture rtl of fastnms_orb_feed is
 
   type columns_t is array (0 to 1) of std_logic_vector(37 * 8 - 1 downto 0);
 
-  type records_t is array (0 to 1) of std_logic_vector(RECORD_BITS - 1 downto 0);
+  -- Ring numbers of rows: modulo 2 ** RING_BITS, more than twice the rows a
+  -- frame and the rows kept span, so that a difference's sign bit tells
+  -- which of two rows in play comes first.
+  constant RING_BITS : positive := maximum(Y_BITS, clog2(37 * SIDES(1).slots)) + 2;
+
+  subtype ring_t is unsigned(RING_BITS - 1 downto 0);
+
+  -- The keypoint queues' words: the row and the cell row's first row in the
+  -- ring, then the record.
+  constant QUEUE_BITS : positive := 2 * RING_BITS + RECORD_BITS;
+
+  type records_t is array (0 to 1) of std_logic_vector(QUEUE_BITS - 1 downto 0);
+
+  function ring_row (word : std_logic_vector) return ring_t is
+  begin
+
+    return unsigned(word(QUEUE_BITS - 1 downto RECORD_BITS + RING_BITS));
+
+  end function ring_row;
+
+  function ring_top (word : std_logic_vector) return ring_t is
+  begin
+
+    return unsigned(word(RECORD_BITS + RING_BITS - 1 downto RECORD_BITS));
+
+  end function ring_top;
+
+  -- a is row b or a row after it (both rows in play).
+  function not_below (a : ring_t; b : ring_t) return boolean is
+    variable d : ring_t;
+  begin
+
+    d := a - b;
+    return d(RING_BITS - 1) = '0';
+
+  end function not_below;
+
+  -- y rounded down to the budget's CELL (16 << log).
+  function cell_top (y : unsigned; log : unsigned(2 downto 0)) return unsigned is
+    variable r : unsigned(y'length - 1 downto 0);
+  begin
+
+    r := y;
+
+    for k in 0 to minimum(y'length, 8) - 1 loop
+
+      if k < 4 or to_integer(log) > k - 4 then
+        r(k) := '0';
+      end if;
+
+    end loop;
+
+    return r;
+
+  end function cell_top;
 
   signal in_valid : std_logic_vector(0 to 1);
   signal in_ready : std_logic_vector(0 to 1);
@@ -148,45 +209,57 @@ begin
 
     signal x       : unsigned(X_BITS - 1 downto 0);
     signal take_px : std_logic;
-    -- The row being written: absolute (the frame's rows so far) and physical
-    -- (numbered as fastnms_orb_rows numbers them: 0 at a frame's first row).
-    signal current  : natural range 0 to 2 ** Y_BITS - 1;
+    -- The row being written: its ring number (rows numbered on across frames,
+    -- 0 the first after reset) and its physical number (as fastnms_orb_rows
+    -- numbers them).
+    signal current  : ring_t;
     signal physical : natural range 0 to ROWS - 1;
-    signal room     : std_logic;
-    signal idle     : std_logic;
-    signal quiet    : natural range 0 to 7;
-    signal rd_valid : std_logic;
-    signal rd_ready : std_logic;
-    signal rd_x     : unsigned(X_BITS - 1 downto 0);
-    signal rd_top   : unsigned(clog2(ROWS) - 1 downto 0);
-    -- The sequencer: the keypoint being requested and its next column.
-    signal busy   : std_logic;
-    signal dx     : natural range 0 to HEIGHT - 1;
-    signal head_x : natural range 0 to 2 ** X_BITS - 1;
-    signal head_y : natural range 0 to 2 ** Y_BITS - 1;
+    -- The ring numbers of row 0 of the frame whose keypoints come in (base)
+    -- and of the next frame (base_next): frames of them, at most 2.
+    signal base       : ring_t;
+    signal base_next  : ring_t;
+    signal frames     : natural range 0 to 2;
+    signal frame_room : std_logic;
+    signal key_word   : std_logic_vector(QUEUE_BITS - 1 downto 0);
+    signal rd_valid   : std_logic;
+    signal rd_ready   : std_logic;
+    signal rd_x       : unsigned(X_BITS - 1 downto 0);
+    signal rd_top     : unsigned(clog2(ROWS) - 1 downto 0);
+    -- The sequencer: the keypoint being requested (its x, its row and its
+    -- cell row's first row) and its next column.
+    signal busy     : std_logic;
+    signal dx       : natural range 0 to HEIGHT - 1;
+    signal head_x   : natural range 0 to 2 ** X_BITS - 1;
+    signal head_row : ring_t;
+    signal head_top : ring_t;
     -- Clocks until the keypoint's first request (its top row computed).
     signal warm   : natural range 0 to 3;
-    signal back   : natural range 0 to 2 ** Y_BITS - 1;
+    signal back   : ring_t;
     signal phys_r : natural range 0 to ROWS - 1;
-    signal top_r  : integer range -(2 ** Y_BITS) to ROWS - 1;
+    signal top_r  : integer range -(2 ** RING_BITS) to ROWS - 1;
     -- The start condition's and the room's operands, a clock ahead.
-    signal after_half : natural range 0 to 2 ** Y_BITS - 1;
-    signal past_half  : boolean;
-    signal limit      : natural range 0 to 2 ** Y_BITS + ROWS;
+    signal after_half : ring_t;
+    signal limit      : ring_t;
     signal pending_r  : boolean;
+    signal room       : std_logic;
   begin
 
     x <= in_x((1 - s) * X_BITS + X_BITS - 1 downto (1 - s) * X_BITS);
 
     -- The stream waits while its next row could overwrite a row still to be
-    -- read, and at a frame's first pixel until the frame before is read.
-    in_ready(s) <= room and (idle or not in_first(s));
+    -- read, and at a frame's first pixel while two frames are open.
+    in_ready(s) <= room and (frame_room or not in_first(s));
     take_px     <= in_valid(s) and in_ready(s);
+
+    -- A keypoint's record with its row and its cell row's first row in the
+    -- ring (the frame's base plus y, and plus y rounded down to CELL).
+    key_word <= std_logic_vector(base + key_y) & std_logic_vector(base + cell_top(key_y, cell_log)) &
+                key_record;
 
     queue : entity work.fastnms_fifo
       generic map (
         DEPTH => QUEUE_DEPTH,
-        WIDTH => RECORD_BITS,
+        WIDTH => QUEUE_BITS,
         STYLE => "distributed"
       )
       port map (
@@ -194,7 +267,7 @@ begin
         rst       => rst,
         in_valid  => key_valid and key_ready,
         in_ready  => queue_ready(s),
-        in_data   => key_record,
+        in_data   => key_word,
         out_valid => queue_valid(s),
         out_ready => queue_pop(s),
         out_data  => queue_head(s),
@@ -211,7 +284,6 @@ begin
         clk        => clk,
         rst        => rst,
         wr_valid   => take_px,
-        wr_first   => in_first(s),
         wr_x       => x,
         wr_pixel   => in_pixel((1 - s) * 8 + 7 downto (1 - s) * 8),
         row_index  => open,
@@ -226,46 +298,64 @@ begin
 
     sequencer : process (clk) is
 
-      variable y        : natural range 0 to 2 ** Y_BITS - 1;
-      variable hx       : natural range 0 to 2 ** X_BITS - 1;
-      variable hy       : natural range 0 to 2 ** Y_BITS - 1;
-      variable d        : natural range 0 to HEIGHT - 1;
-      variable b, v     : std_logic;
-      variable w        : natural range 0 to 3;
-      variable row      : natural range 0 to 2 ** Y_BITS;
-      variable phys     : natural range 0 to ROWS - 1;
-      variable low      : natural range 0 to 2 ** Y_BITS - 1;
-      variable pending  : boolean;
-      variable low_bits : unsigned(Y_BITS - 1 downto 0);
+      variable hx      : natural range 0 to 2 ** X_BITS - 1;
+      variable hr, ht  : ring_t;
+      variable d       : natural range 0 to HEIGHT - 1;
+      variable b, v    : std_logic;
+      variable w       : natural range 0 to 3;
+      variable row     : ring_t;
+      variable phys    : natural range 0 to ROWS - 1;
+      variable bq, bn  : ring_t;
+      variable n       : natural range 0 to 2;
+      variable low     : ring_t;
+      variable pending : boolean;
 
     begin
 
       if rising_edge(clk) then
         queue_pop(s) <= '0';
 
-        -- The rows written: a frame's first pixel is row 0.
+        -- The rows written: a row's first pixel starts the next row.
         row  := current;
         phys := physical;
-        if take_px = '1' then
-          if in_first(s) = '1' then
-            row  := 0;
-            phys := 0;
-          elsif x = 0 then
-            row  := current + 1;
-            phys := (physical + 1) mod ROWS;
-          end if;
+        if take_px = '1' and x = 0 then
+          row  := current + 1;
+          phys := (physical + 1) mod ROWS;
         end if;
-        current  <= row mod 2 ** Y_BITS;
+        current  <= row;
         physical <= phys;
+
+        -- The frames open: one more at a frame's first pixel (its row 0), one
+        -- less once the keypoints of the oldest are in (key_frame_end).
+        n  := frames;
+        bq := base;
+        bn := base_next;
+        if key_frame_end = '1' and n > 0 then
+          bq := base_next;
+          n  := n - 1;
+        end if;
+        if take_px = '1' and in_first(s) = '1' and n < 2 then
+          if n = 0 then
+            bq := row;
+          else
+            bn := row;
+          end if;
+          n := n + 1;
+        end if;
+        base       <= bq;
+        base_next  <= bn;
+        frames     <= n;
+        frame_room <= to_sl(n < 2);
+
         -- Rows complete below HALF + 1 rows under the current one (a clock
         -- late: a keypoint starts a clock later at most).
-        after_half <= (current + 2 ** Y_BITS - HALF - 1) mod 2 ** Y_BITS;
-        past_half  <= current > HALF;
+        after_half <= current - (HALF + 1);
 
         -- The request presented: the next column, or, three clocks after the
         -- head record is taken (once its last row is complete), its first.
         hx := head_x;
-        hy := head_y;
+        hr := head_row;
+        ht := head_top;
         d  := dx;
         b  := busy;
         v  := rd_valid;
@@ -284,13 +374,14 @@ begin
         if warm > 0 then
           w := warm - 1;
         end if;
-        y := to_integer(unsigned(queue_head(s)(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS)));
-        if b = '0' and queue_valid(s) = '1' and queue_pop(s) = '0' and past_half and after_half >= y then
+        if b = '0' and queue_valid(s) = '1' and queue_pop(s) = '0' and
+           not_below(after_half, ring_row(queue_head(s))) then
           b            := '1';
           d            := 0;
           w            := 3;
           hx           := to_integer(unsigned(queue_head(s)(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS)));
-          hy           := y;
+          hr           := ring_row(queue_head(s));
+          ht           := ring_top(queue_head(s));
           queue_pop(s) <= '1';
         end if;
         busy     <= b;
@@ -298,7 +389,8 @@ begin
         warm     <= w;
         dx       <= d;
         head_x   <= hx;
-        head_y   <= hy;
+        head_row <= hr;
+        head_top <= ht;
         -- (Wrapped like the hardware's adds when no keypoint is in.)
         rd_x <= to_unsigned((hx + d + 2 ** X_BITS - HALF) mod 2 ** X_BITS, X_BITS);
 
@@ -307,7 +399,7 @@ begin
         -- ROWS - 1 for a keypoint whose rows are kept), in three steps from
         -- registers while the keypoint warms up (warm 3, 2, 1).
         if warm = 3 then
-          back   <= (current + HALF + 2 ** Y_BITS - head_y) mod 2 ** Y_BITS;
+          back   <= current + HALF - head_row;
           phys_r <= physical;
         end if;
         -- (back >= ROWS: the keypoint's top row was overwritten.)
@@ -315,7 +407,7 @@ begin
         if warm = 2 then
           top_r <= phys_r;
           if back < ROWS then
-            top_r <= phys_r - back;
+            top_r <= phys_r - to_integer(back);
           else
             overwritten(s) <= '1';
           end if;
@@ -330,50 +422,33 @@ begin
 
         -- A new row may start while it overwrites no row a pending keypoint
         -- needs. The keypoints come a cell row at a time, so none is above the
-        -- first line of the oldest one's cell row (its y rounded down to CELL).
-        -- From registers, two clocks late: rows start a whole line apart, and
-        -- a keypoint arrives long before its rows could be overwritten.
+        -- first row of the oldest one's cell row. From registers, two clocks
+        -- late: rows start a whole line apart, and a keypoint arrives long
+        -- before its rows could be overwritten.
         pending := b = '1' or queue_valid(s) = '1' or (key_valid = '1' and key_ready = '1');
-        low     := to_integer(key_y);
+        low     := ring_top(key_word);
         if b = '1' then
-          low := hy;
+          low := ht;
         elsif queue_valid(s) = '1' then
-          low := y;
+          low := ring_top(queue_head(s));
         end if;
-        low_bits := to_unsigned(low, Y_BITS);
-
-        for k in 0 to minimum(Y_BITS, 8) - 1 loop
-
-          if k < 4 or to_integer(cell_log) > k - 4 then
-            low_bits(k) := '0';
-          end if;
-
-        end loop;
-
         -- The next row overwrites row current + 1 - ROWS: it must stay above
-        -- the rows from HALF above that line.
-        limit     <= to_integer(low_bits) + ROWS - 1 - HALF;
+        -- the rows from HALF above that line (current <= limit).
+        limit     <= low + (ROWS - 2 - HALF);
         pending_r <= pending;
-        room      <= to_sl(not pending_r or current < limit or TEST_FAULT = "rows");
-        -- Idle: nothing pending for a few clocks, the last requests read.
-        if pending then
-          quiet <= 0;
-        elsif quiet < 7 then
-          quiet <= quiet + 1;
-        end if;
-        idle <= to_sl(not pending and quiet >= 6);
+        room      <= to_sl(not pending_r or not_below(limit, current) or TEST_FAULT = "rows");
 
         if rst = '1' then
           busy           <= '0';
           rd_valid       <= '0';
           warm           <= 0;
-          current        <= 0;
-          physical       <= 0;
+          current        <= (others => '1');
+          physical       <= ROWS - 1;
+          frames         <= 0;
+          frame_room     <= '1';
           room           <= '1';
           pending_r      <= false;
           overwritten(s) <= '0';
-          idle           <= '1';
-          quiet          <= 7;
         end if;
       end if;
 
@@ -385,11 +460,19 @@ begin
 
       if rising_edge(clk) then
         if rst = '0' and queue_pop(s) = '1' then
-          assert current - (head_y - HALF) < ROWS or TEST_FAULT /= "none"
+          assert current + HALF - head_row < ROWS or TEST_FAULT /= "none"
             report "fastnms_orb_feed: a keypoint's rows were overwritten before it was read"
             severity error;
           assert 2 ** (4 + to_integer(cell_log)) <= MAX_CELL
             report "fastnms_orb_feed: the budget's CELL is above MAX_CELL"
+            severity error;
+        end if;
+        if rst = '0' then
+          assert not (key_frame_end = '1' and frames = 0)
+            report "fastnms_orb_feed: key_frame_end without a frame open"
+            severity error;
+          assert not (take_px = '1' and in_first(s) = '1' and x /= 0)
+            report "fastnms_orb_feed: a frame's first pixel must be at x = 0"
             severity error;
         end if;
       end if;
@@ -410,7 +493,7 @@ begin
 
     if rising_edge(clk) then
       tag_push   <= queue_pop(0);
-      tag_pushed <= queue_head(0);
+      tag_pushed <= queue_head(0)(RECORD_BITS - 1 downto 0);
     end if;
 
   end process tags;

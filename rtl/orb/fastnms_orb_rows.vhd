@@ -1,5 +1,6 @@
 -- The last HEIGHT * SLOTS image rows, written one pixel per clock and read
--- as columns of HEIGHT rows at any x, one column per clock.
+-- as columns of HEIGHT rows at any x, one column per clock. Rows are
+-- numbered on across frames (a ring): the first row after reset is row 0.
 -- Datasheet: docs/orb_rtl.md
 library ieee;
   use ieee.std_logic_1164.all;
@@ -17,10 +18,9 @@ entity fastnms_orb_rows is
   port (
     clk : in    std_logic;
     rst : in    std_logic;
-    -- The image: one pixel per wr_valid, in raster order; wr_first marks a
-    -- frame's first pixel, wr_x = 0 a row's first.
+    -- The image: one pixel per wr_valid, in raster order; wr_x = 0 starts
+    -- the next row (row_index), a frame's first row too.
     wr_valid  : in    std_logic;
-    wr_first  : in    std_logic;
     wr_x      : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
     wr_pixel  : in    std_logic_vector(7 downto 0);
     row_index : out   unsigned(clog2(HEIGHT * SLOTS) - 1 downto 0);
@@ -157,7 +157,6 @@ architecture rtl of fastnms_orb_rows is
   -- The pixel registered (A), then written (B) with its memory (one-hot) and
   -- address; the row being written: its memory (one-hot), slot and number.
   signal a_valid   : std_logic;
-  signal a_first   : std_logic;
   signal a_new_row : std_logic;
   signal a_x       : unsigned(X_BITS - 1 downto 0);
   signal a_pixel   : std_logic_vector(7 downto 0);
@@ -214,27 +213,19 @@ begin
 
     if rising_edge(clk) then
       a_valid   <= wr_valid;
-      a_first   <= wr_first;
       a_new_row <= to_sl(wr_x = 0);
       a_x       <= wr_x;
       a_pixel   <= wr_pixel;
 
-      -- A frame's first pixel is row 0, a row's first pixel the next row.
+      -- A row's first pixel starts the next row.
       memory := wr_memory;
       slot   := wr_slot;
       row    := row_count;
-      if a_valid = '1' and a_first = '1' then
-        row_last <= '0';
-      elsif a_valid = '1' and a_new_row = '1' then
+      if a_valid = '1' and a_new_row = '1' then
         row_last <= to_sl(row_count = ROWS - 2);
       end if;
 
-      if a_first = '1' then
-        memory    := (others => '0');
-        memory(0) := '1';
-        slot      := 0;
-        row       := 0;
-      elsif a_new_row = '1' then
+      if a_new_row = '1' then
         memory := wr_memory(HEIGHT - 1) & wr_memory(0 to HEIGHT - 2);
         if wr_memory(HEIGHT - 1) = '1' then
           slot := (wr_slot + 1) mod SLOTS;
@@ -255,14 +246,15 @@ begin
       wr1_addr  <= to_unsigned(slot, SLOT_BITS) & a_x;
       wr1_pixel <= a_pixel;
 
+      -- (Reset: the row before row 0, the last of the ring.)
       if rst = '1' then
-        a_valid      <= '0';
-        wr_memory    <= (others => '0');
-        wr_memory(0) <= '1';
-        wr_slot      <= 0;
-        row_count    <= 0;
-        row_last     <= '0';
-        wr1_en       <= (others => '0');
+        a_valid               <= '0';
+        wr_memory             <= (others => '0');
+        wr_memory(HEIGHT - 1) <= '1';
+        wr_slot               <= SLOTS - 1;
+        row_count             <= ROWS - 1;
+        row_last              <= '1';
+        wr1_en                <= (others => '0');
       end if;
     end if;
 

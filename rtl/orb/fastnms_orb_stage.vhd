@@ -27,12 +27,14 @@ entity fastnms_orb_stage is
     clk : in    std_logic;
     rst : in    std_logic;
     -- The image and its blur, one pixel of each per beat, raster order.
-    img_valid      : in    std_logic;
-    img_ready      : out   std_logic;
-    img_first      : in    std_logic;
-    img_x          : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
-    img_pixel      : in    std_logic_vector(7 downto 0);
-    img_blurred    : in    std_logic_vector(7 downto 0);
+    img_valid   : in    std_logic;
+    img_ready   : out   std_logic;
+    img_first   : in    std_logic;
+    img_x       : in    unsigned(clog2(MAX_WIDTH) - 1 downto 0);
+    img_pixel   : in    std_logic_vector(7 downto 0);
+    img_blurred : in    std_logic_vector(7 downto 0);
+    -- The frame's budget, with its first pixel (img_first): log2(CELL) - 4
+    -- and K = 0; in use until its end-of-frame beat leaves.
     cfg_cell_log   : in    unsigned(2 downto 0);
     cfg_drop       : in    std_logic;
     in_valid       : in    std_logic;
@@ -70,8 +72,8 @@ architecture rtl of fastnms_orb_stage is
   -- Records in the queue and the feed: the queue's words, the feed's two
   -- queues of 16 and what its engine holds.
   constant MAX_PENDING : positive := 2 ** clog2(QUEUE_DEPTH) + 256;
-  -- The feed's own faults.
 
+  -- The feed's own faults.
   function feed_fault return string is
   begin
 
@@ -85,6 +87,16 @@ architecture rtl of fastnms_orb_stage is
 
   signal plain_ready   : std_logic;
   signal blurred_ready : std_logic;
+  signal img_go        : std_logic;
+  -- The budgets of the open frames (two at most, as in the feed): of the
+  -- frame whose records come in (frame_log, frame_drop), and of the next.
+  signal frames     : natural range 0 to 2;
+  signal frame_room : std_logic;
+  signal frame_log  : unsigned(2 downto 0);
+  signal frame_drop : std_logic;
+  signal next_log   : unsigned(2 downto 0);
+  signal next_drop  : std_logic;
+  signal eof_leaves : std_logic;
 
   signal is_record : std_logic;
   signal push      : std_logic;
@@ -115,19 +127,21 @@ begin
     report "fastnms_orb_stage: TEST_FAULT must be ""none"", ""rows"", ""tags"" or ""count"""
     severity failure;
 
-  -- One image stream into the feed's two: a beat goes when both take it.
-  img_ready <= plain_ready and blurred_ready;
+  -- One image stream into the feed's two: a beat goes when both take it, a
+  -- frame's first pixel while fewer than two frames are open.
+  img_go    <= img_valid and (frame_room or not img_first);
+  img_ready <= plain_ready and blurred_ready and (frame_room or not img_first);
 
   -- A record goes into the queue; with cfg_drop it is dropped when the
   -- queue is full. The end of frame waits until every record has left, and
   -- nothing passes while it waits to leave.
   is_record <= in_valid and not in_eof and not eof_held;
   push      <= is_record and q_ready;
-  dropped   <= is_record and not q_ready and cfg_drop;
+  dropped   <= is_record and not q_ready and frame_drop;
   none_left <= to_sl(pending = 0);
   in_ready  <= '0' when eof_held = '1' else
                none_left when in_eof = '1' else
-               q_ready or cfg_drop;
+               q_ready or frame_drop;
 
   queue : entity work.fastnms_fifo
     generic map (
@@ -161,12 +175,12 @@ begin
     port map (
       clk            => clk,
       rst            => rst,
-      plain_valid    => img_valid and blurred_ready,
+      plain_valid    => img_go and blurred_ready,
       plain_ready    => plain_ready,
       plain_first    => img_first,
       plain_x        => img_x,
       plain_pixel    => img_pixel,
-      blurred_valid  => img_valid and plain_ready,
+      blurred_valid  => img_go and plain_ready,
       blurred_ready  => blurred_ready,
       blurred_first  => img_first,
       blurred_x      => img_x,
@@ -176,7 +190,8 @@ begin
       key_x          => unsigned(q_data(RECORD_BITS - 1 downto Y_BITS + SCORE_BITS)),
       key_y          => unsigned(q_data(Y_BITS + SCORE_BITS - 1 downto SCORE_BITS)),
       key_score      => unsigned(q_data(SCORE_BITS - 1 downto 0)),
-      cell_log       => cfg_cell_log,
+      cell_log       => frame_log,
+      key_frame_end  => eof_leaves,
       out_valid      => f_valid,
       out_ready      => f_ready,
       out_x          => f_x,
@@ -193,6 +208,7 @@ begin
   f_ready        <= out_ready and not eof_held;
   out_valid      <= eof_held or f_valid;
   out_eof        <= eof_held;
+  eof_leaves     <= eof_held and out_ready;
   out_x          <= eof_x when eof_held = '1' else
                     f_x;
   out_y          <= eof_y when eof_held = '1' else
@@ -207,6 +223,7 @@ begin
   counts : process (clk) is
 
     variable count : natural range 0 to MAX_PENDING;
+    variable n     : natural range 0 to 2;
 
   begin
 
@@ -227,6 +244,27 @@ begin
       end if;
       pending <= count;
 
+      -- The open frames' budgets: the next one's taken with its first pixel,
+      -- the oldest one's dropped when its end of frame leaves.
+      n := frames;
+      if eof_leaves = '1' and n > 0 then
+        frame_log  <= next_log;
+        frame_drop <= next_drop;
+        n          := n - 1;
+      end if;
+      if img_valid = '1' and img_ready = '1' and img_first = '1' and n < 2 then
+        if n = 0 then
+          frame_log  <= cfg_cell_log;
+          frame_drop <= cfg_drop;
+        else
+          next_log  <= cfg_cell_log;
+          next_drop <= cfg_drop;
+        end if;
+        n := n + 1;
+      end if;
+      frames     <= n;
+      frame_room <= to_sl(n < 2);
+
       if in_valid = '1' and in_eof = '1' and eof_held = '0' and none_left = '1' then
         eof_held <= '1';
         eof_x    <= in_x;
@@ -236,9 +274,11 @@ begin
       end if;
 
       if rst = '1' then
-        pending   <= 0;
-        eof_held  <= '0';
-        err_count <= '0';
+        pending    <= 0;
+        eof_held   <= '0';
+        err_count  <= '0';
+        frames     <= 0;
+        frame_room <= '1';
       end if;
     end if;
 

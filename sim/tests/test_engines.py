@@ -363,6 +363,28 @@ def test_netlist_bit_strings_become_binary_literals():
     )
 
 
+def test_orb_back_to_back(rng, seed):
+    """ORB at 1920x1080 (opencv + 3x3, CELL 16, K 4) on three frames back to back with no
+    blanking at all (noise at t = 0, a photograph, noise): the next frame's pixels come in
+    while the frame before's last cell row is in ORB, so the input is never held (the
+    engine's input_stalls, as `fastnms sim --orb --json` reports them, are 0) and every
+    frame's keypoints equal the golden model's (angles and descriptors)."""
+    import cv2
+    from fastnms.golden.orb import orb_features
+
+    photo = cv2.resize(load_grey(testimages.real_images()[0]), (1920, 1080))
+    frames = [(testimages.noise(rng, 1920, 1080), 0), (photo, 20)]
+    frames.append((testimages.noise(rng, 1920, 1080), 0))
+    generics = generics_for("opencv", "3x3", orb=True)
+    result = run_rtl(frames, "opencv", "3x3", generics=generics, budget=(16, 4))
+    assert [f.input_stalls for f in result.frames] == [0, 0, 0], f"seed {seed}"
+    for (img, t), got in zip(frames, result.frames, strict=True):
+        want = orb_features(img, t, "opencv", "3x3", cell=16, per_cell=4)
+        assert np.array_equal(got.records, want.records), f"seed {seed}"
+        assert np.array_equal(got.angle_bits, want.angles.view(np.uint32))
+        assert np.array_equal(got.descriptors, want.descriptors)
+
+
 def test_orb_rate_bound_with_blanking(rng, seed):
     """ORB at 1920x1080 (opencv + 3x3, CELL 16, BUDGET written with K 15, which the top
     clamps to 4 = CELL x CELL / 64, the engine's 64 clocks per keypoint; a build with

@@ -1,8 +1,10 @@
 """cocotb testbench of fastnms_orb_feed: ORB after the budget on whole images. The image and
-its blurred copy stream in (each on its own, with idle clocks, back-to-back frames), the
-golden model's kept keypoints (3x3 NMS, ORB's border, the budget) come in a cell row at a time
-once the input is past that cell row, as the budget hands them over; every keypoint's x, y,
-score, angle bits and descriptor equal to golden/orb.py's orb_features, in the same order.
+its blurred copy stream in (each on its own, with idle clocks, back-to-back frames: the next
+frame's pixels come in while the frame before's last keypoints are read), the golden model's
+kept keypoints (3x3 NMS, ORB's border, the budget) come in a cell row at a time once both
+inputs are past that cell row, as the budget hands them over, then a key_frame_end pulse;
+every keypoint's x, y, score, angle bits and descriptor equal to golden/orb.py's
+orb_features, in the same order.
 Frames: a photograph crop, noise at threshold 0 (more keypoints than the engine's rate, so
 the input must be held), and a flat image (no keypoint)."""
 
@@ -82,6 +84,7 @@ async def equals_the_model(dut):
         dut, dut.clk, "out", ["x", "y", "score", "angle", "descriptor"], rng, stall=0.2
     )
     dut.cell_log.value = (CELL // 16).bit_length() - 1  # log2(CELL) - 4
+    dut.key_frame_end.value = 0
     dut.rst.value = 1
     await ClockCycles(dut.clk, 2)
     dut.rst.value = 0
@@ -107,11 +110,17 @@ async def equals_the_model(dut):
             cocotb.start_soon(plain.send(img)),
             cocotb.start_soon(blurred.send(orb.gaussian_blur(img))),
         ]
-        # A cell row's keypoints once the input is a row past it (the budget's hand-over).
+        # A cell row's keypoints once the input is a row past it (the budget's hand-over),
+        # then the frame's end, once both inputs are in the frame.
         for r in sorted(groups):
-            while plain.row < CELL * r + CELL:
+            while min(plain.row, blurred.row) < CELL * r + CELL:
                 await RisingEdge(dut.clk)
             await keys.send(groups[r])
+        while min(plain.row, blurred.row) < 0:
+            await RisingEdge(dut.clk)
+        dut.key_frame_end.value = 1
+        await RisingEdge(dut.clk)
+        dut.key_frame_end.value = 0
         for w in writing:
             await w
         dut._log.info("frame %d: the image input held on %d clocks", k, stalls[0] - before)

@@ -48,6 +48,7 @@ MODULE = {
     **dict.fromkeys(["live_mode", "live_config_writes"], "axi_live_tb"),
     "budget_frames": "axi_budget_tb",
     **dict.fromkeys(["internal_error", "resets_mid_frame"], "axi_errors_tb"),
+    "orb_live_back_to_back": "axi_orb_live_tb",
 }
 
 
@@ -346,8 +347,8 @@ def test_axi_orb(request, tmp_path, score, nms):
 
 # The internal errors, each forced by a test-only fault (TEST_FAULT): ORB's at 128 wide
 # and 160 tall (the rows' fault needs a frame taller than ORB's rows at CELL 16), the
-# configuration queue's with the budget and no ORB. ORB's tags and count (2-3 min each)
-# in make test-full.
+# configuration queue's with the budget and no ORB. ORB's three (2-3 min each) in make
+# test-full; make test has the configuration queue's (the same reset, flag and interrupt).
 ORB_FAULTY = {
     **ORB_SMALL,
     "MAX_HEIGHT": 160,
@@ -368,7 +369,7 @@ BUDGET_FAULTY = {
 @pytest.mark.parametrize(
     ("generics", "fault"),
     [
-        pytest.param(ORB_FAULTY, "rows", id="orb-rows"),
+        pytest.param(ORB_FAULTY, "rows", marks=pytest.mark.slow, id="orb-rows"),
         pytest.param(ORB_FAULTY, "tags", marks=pytest.mark.slow, id="orb-tags"),
         pytest.param(ORB_FAULTY, "count", marks=pytest.mark.slow, id="orb-count"),
         pytest.param(BUDGET_FAULTY, "config", id="budget-config"),
@@ -385,11 +386,19 @@ def test_axi_internal_error(request, generics, fault):
     )
 
 
+@pytest.mark.slow
 def test_axi_orb_resets_mid_frame(request):
     """ORB: CMD.SOFT_RESET and aresetn while keypoints are in ORB; the next frames exact
     (tb/top/axi_errors_tb.py)."""
     generics = {**ORB_FAULTY, "MAX_HEIGHT": 80}
     run_axi(request, generics, "resets_mid_frame", env={"TB_IDLE": "0.1", "TB_STALL": "0.2"})
+
+
+def test_axi_orb_live(request):
+    """ORB in LIVE mode: back-to-back frames without blanking, tready high on every
+    clock, register writes around each start of frame, every frame exact
+    (tb/top/axi_orb_live_tb.py)."""
+    run_axi(request, ORB_SMALL | {"SCORE": "opencv", "NMS": "3x3"}, "orb_live_back_to_back")
 
 
 def c_decoder(where: Path) -> Path:
