@@ -2,9 +2,10 @@
 frames back to back without an idle clock or any blanking, so each frame's first pixels
 come while the frame before's last keypoints are in ORB; s_axis_video_tready must be
 high on every clock, and every frame exact against orb_features (x, y, score, angle
-bits, descriptor). Register writes of WIDTH, HEIGHT and BUDGET (the values in use) run
-back to back from 12 clocks before to 12 after each start of frame; THRESHOLD and
-BUDGET change from frame to frame (written while the frame before comes in).
+bits, descriptor). Register writes of WIDTH, HEIGHT, BUDGET and THRESHOLD (the frame's
+values) run back to back from 12 clocks before to 12 after each start of frame;
+THRESHOLD and BUDGET change from frame to frame (written while the frame before comes
+in).
 
 Configuration from pytest (tb/top/test_axi.py::test_axi_orb_live): TB_GENERICS.
 """
@@ -71,9 +72,10 @@ async def orb_live_back_to_back(dut):
             cell, per_cell = budgets[k]
             budget = cell << regs.BUDGET_CELL.lsb | per_cell << regs.BUDGET_PER_CELL.lsb
             values = [(regs.WIDTH, W), (regs.HEIGHT, H), (regs.BUDGET, budget)]
+            values.append((regs.THRESHOLD, frames[k][1]))
             i = 0
             while tb.cycle < first + k * W * H + 12:
-                await tb.write(*values[i % 3])
+                await tb.write(*values[i % len(values)])
                 i += 1
 
     cocotb.start_soon(ready_high())
