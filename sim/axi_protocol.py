@@ -27,23 +27,8 @@ import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from . import regs
+from .records import RESERVED
 
-# Bits of a record that no field uses.
-RESERVED = (
-    ~(
-        regs.REC_X.mask
-        | regs.REC_Y.mask
-        | regs.REC_SCORE.mask
-        | regs.REC_ERROR.mask
-        | regs.REC_EMPTY.mask
-        | regs.REC_LAST.mask
-        | regs.REC_ABORTED.mask
-        | regs.REC_OVERFLOW.mask
-        | regs.REC_ORB.mask
-        | regs.REC_AREA.mask
-    )
-    & (1 << 64) - 1
-)
 ANGLE_RESERVED = ~regs.REC_ANGLE.mask & (1 << 64) - 1
 
 

@@ -36,7 +36,7 @@ Corner = tuple[int, int, int]
 # The fields that are 0 in the EMPTY record.
 _FIELDS = regs.REC_X.mask | regs.REC_Y.mask | regs.REC_SCORE.mask | regs.REC_AREA.mask
 # The bits of beat 0 that no field uses (0 in every record).
-_RESERVED = ((1 << 64) - 1) & ~(
+RESERVED = ((1 << 64) - 1) & ~(
     _FIELDS
     | regs.REC_ERROR.mask
     | regs.REC_EMPTY.mask
@@ -136,7 +136,7 @@ class RecordDecoder:
             if (
                 not last
                 or aborted
-                or word & (_FIELDS | _RESERVED)
+                or word & (_FIELDS | RESERVED)
                 or (frame.records != 1 and not lost)
             ):
                 frame.malformed = True
