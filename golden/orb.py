@@ -41,6 +41,7 @@ from .budget import cell_budget, validate_budget
 from .fast import validate_image, validate_score, validate_threshold
 from .model import DEFAULT_THRESHOLD, detect, validate_nms
 from .orb_pattern import BIT_PATTERN_31
+from .pyramid import DEFAULT_SCALE_FACTOR, level_scale, pyramid, validate_levels
 
 EDGE = 31  # cv2.ORB's default edgeThreshold: keypoints closer to a border are dropped
 PATCH_SIZE = 31  # the moments' patch and cv2.KeyPoint.size
@@ -235,31 +236,68 @@ def detect_and_compute(
     orb: bool = True,
     cell: int | None = None,
     per_cell: int = 0,
+    nlevels: int = 1,
+    scale_factor: float = DEFAULT_SCALE_FACTOR,
 ) -> tuple[tuple[cv2.KeyPoint, ...], np.ndarray | None]:
     """Keypoints and descriptors in OpenCV's own types, as cv2.ORB.detectAndCompute gives
-    them: a tuple of cv2.KeyPoint (pt, response = score, angle, size 31, octave 0) and an
-    (N, 32) uint8 array (also for N = 0, where OpenCV gives None), sorted by y then x.
-    With per_cell > 0, at most per_cell keypoints per cell x cell square (budget.py).
+    them: a tuple of cv2.KeyPoint and an (N, 32) uint8 array (also for N = 0, where OpenCV
+    gives None), level by level, each level's sorted by y then x. With per_cell > 0, at
+    most per_cell keypoints per cell x cell square of each level's own pixels (budget.py).
+
+    nlevels > 1: cv2.ORB's image pyramid (pyramid.py): on level k the single-level model
+    runs on the level's image; a keypoint's pt is its level position times scale_k in
+    float32, its size 31 * scale_k, its octave k (cv2.ORB_create(nlevels, scaleFactor,
+    edgeThreshold=31, patchSize=31, fastThreshold, ORB_FAST_SCORE) gives the same
+    keypoints). A level narrower or lower than 63 pixels has none.
 
     With orb=False: every keypoint of the NMS (within the budget), as
-    cv2.FastFeatureDetector gives them (size 7, angle -1), and None for the descriptors.
+    cv2.FastFeatureDetector gives them (size 7, angle -1; on level k pt times scale_k,
+    size 7 * scale_k, octave k), and None for the descriptors.
     """
     validate_image(img)
     validate_threshold(threshold)
     validate_score(score)
     validate_nms(nms)
     cell, per_cell = validate_budget(cell, per_cell)
+    nlevels, scale_factor = validate_levels(nlevels, scale_factor)
+    keypoints: list[cv2.KeyPoint] = []
+    described = []
+    for level, image in enumerate(pyramid(img, nlevels, scale_factor)):
+        scale = level_scale(level, scale_factor)
+        if not orb:
+            records = detect(image, threshold, score, nms)
+            if per_cell:
+                records = cell_budget(records, cell, per_cell)
+            angles, size = np.full(len(records), -1.0, np.float32), np.float32(7) * scale
+        else:
+            f = level_features(image, threshold, score, nms, cell, per_cell)
+            records, angles, size = f.records, f.angles, np.float32(PATCH_SIZE) * scale
+            described.append(f.descriptors)
+        xs = (records[:, 0].astype(np.float32) * scale).tolist()
+        ys = (records[:, 1].astype(np.float32) * scale).tolist()
+        keypoints += [
+            cv2.KeyPoint(x, y, float(size), float(a), float(s), level, -1)
+            for x, y, a, s in zip(xs, ys, angles.tolist(), records[:, 2].tolist(), strict=True)
+        ]
     if not orb:
-        records = detect(img, threshold, score, nms)
-        if per_cell:
-            records = cell_budget(records, cell, per_cell)
-        keypoints = tuple(
-            cv2.KeyPoint(float(x), float(y), 7.0, -1.0, float(s)) for x, y, s in records.tolist()
+        return tuple(keypoints), None
+    return tuple(keypoints), np.concatenate(described)
+
+
+def level_features(
+    image: np.ndarray,
+    threshold: int = DEFAULT_THRESHOLD,
+    score: str = "opencv",
+    nms: str = "3x3",
+    cell: int | None = None,
+    per_cell: int = 0,
+) -> OrbFeatures:
+    """orb_features of one pyramid level; none on a level without room for the border."""
+    h, w = image.shape
+    if min(h, w) <= 2 * EDGE:
+        return OrbFeatures(
+            np.zeros((0, 3), np.int64),
+            np.zeros(0, np.float32),
+            np.zeros((0, DESCRIPTOR_BYTES), np.uint8),
         )
-        return keypoints, None
-    f = orb_features(img, threshold, score, nms, cell, per_cell)
-    keypoints = tuple(
-        cv2.KeyPoint(float(x), float(y), float(PATCH_SIZE), float(angle), float(s), 0, -1)
-        for (x, y, s), angle in zip(f.records.tolist(), f.angles.tolist(), strict=True)
-    )
-    return keypoints, f.descriptors
+    return orb_features(image, threshold, score, nms, cell, per_cell)
