@@ -93,6 +93,7 @@ def axis_taps(src: int, dst: int) -> tuple[np.ndarray, np.ndarray]:
     """For each of the `dst` destination indices along an axis of `src` pixels: the first
     source index (int64, clamped into 0..src-1) and its weight c0 (int64, 0..256; the next
     pixel weighs 256 - c0), as OpenCV's interpolationLinear::getCoeffs computes them."""
+    src, dst = int(src), int(dst)
     if src < 1 or dst < 1:
         raise ValueError(f"sizes must be at least 1, got {src} -> {dst}")
     s_num, s_den = _scale(src, dst).ratio()

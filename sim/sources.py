@@ -11,7 +11,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 RTL = REPO / "rtl"
 # The areas of rtl/, building blocks first.
-RTL_AREAS = ["common", "fast", "nms", "budget", "orb", "core", "top"]
+RTL_AREAS = ["common", "fast", "nms", "budget", "orb", "resize", "core", "top"]
 
 _DEFINES = re.compile(r"^\s*(?:entity|package)\s+(\w+)\s+is\b", re.IGNORECASE | re.MULTILINE)
 _USES = re.compile(r"\b(?:entity|use)\s+work\.(\w+)", re.IGNORECASE)
