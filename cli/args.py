@@ -1,6 +1,7 @@
 """The command line's shared arguments: the one-line usage errors (`fastnms: error: ...`,
-exit status 2), the argument types (threshold, cell, per-cell, min-area, idle and stall
-patterns, counts) and the detection and budget options the subcommands take.
+exit status 2), the argument types (threshold, cell, per-cell, min-area, pyramid levels and
+scale factor, idle and stall patterns, counts) and the detection, budget and pyramid
+options the subcommands take.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import argparse
 from fastnms.golden.budget import CELL_SIZES, MAX_PER_CELL
 from fastnms.golden.model import DEFAULT_THRESHOLD, NMS_MODES, SCORES
 from fastnms.golden.nms import AREA_MAX
+from fastnms.golden.pyramid import DEFAULT_SCALE_FACTOR, MAX_LEVELS, validate_levels
 from fastnms.sim.timing import Pattern
 
 PROG = "fastnms"
@@ -77,6 +79,28 @@ min_area_arg = int_in("min-area", 0, AREA_MAX)
 
 # Keypoints per cell, 1..15.
 per_cell_arg = int_in("per-cell", 1, MAX_PER_CELL)
+
+
+# Pyramid levels, 1..MAX_LEVELS (the golden model's validate_levels, same message).
+levels_arg = int_in("levels", 1, MAX_LEVELS)
+
+
+def scale_factor_arg(text: str) -> float:
+    """argparse type: the pyramid's scale factor, a finite number above 1 (as a float32,
+    the type cv2.ORB keeps it in)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"scale factor must be a number above 1, got {text!r}"
+        ) from None
+    try:
+        return validate_levels(1, value)[1]
+    except ValueError:
+        as_float32 = " (1 as a float32, cv2.ORB's type)" if value > 1 else ""
+        raise argparse.ArgumentTypeError(
+            f"scale factor must be a number above 1, got {text!r}{as_float32}"
+        ) from None
 
 
 def pattern_arg(text: str) -> Pattern:
@@ -162,6 +186,34 @@ def add_budget_args(p: argparse.ArgumentParser, where: str = "") -> None:
         help=f"keypoint budget: keep the K (1..{MAX_PER_CELL}) best-scoring keypoints of "
         f"each cell, ties to the first in raster order (with --cell){where}",
     )
+
+
+def add_level_args(p: argparse.ArgumentParser, levels_help: str, required: bool = False) -> None:
+    """--levels N and --scale-factor F: cv2.ORB's image pyramid."""
+    p.add_argument(
+        "--levels",
+        type=levels_arg,
+        required=required,
+        metavar="N",
+        help=f"{levels_help}; N an integer 1..{MAX_LEVELS} (cv2.ORB's default is 8)",
+    )
+    p.add_argument(
+        "--scale-factor",
+        type=scale_factor_arg,
+        metavar="F",
+        help="the pyramid's scale factor, a number above 1 (default "
+        f"{DEFAULT_SCALE_FACTOR}, cv2.ORB's): level k is 1/F**k the size of the image, "
+        "each level resized from the one before with cv2.INTER_LINEAR_EXACT",
+    )
+
+
+def scale_factor_of(args: argparse.Namespace) -> float:
+    """--scale-factor, its default without it; only with --levels."""
+    if args.scale_factor is None:
+        return DEFAULT_SCALE_FACTOR
+    if args.levels is None:
+        raise UsageError("--scale-factor needs --levels")
+    return args.scale_factor
 
 
 def budget_of(args: argparse.Namespace) -> tuple[int, int] | None:

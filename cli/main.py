@@ -1,10 +1,10 @@
 """The `fastnms` command line: the top-level parser and main().
 
-Subcommands (`golden`, `sim`, `compare`) are registered in SUBCOMMANDS; each gets its own
-sub-parser and handler, in a module of its own (golden_command, sim_command,
-compare_command). User errors (bad arguments, unreadable images, unwritable outputs) end
-as one `fastnms: error: ...` line on stderr with exit status 2 and leave no output file
-behind.
+Subcommands (`golden`, `sim`, `compare`, `pyramid`) are registered in SUBCOMMANDS; each
+gets its own sub-parser and handler, in a module of its own (golden_command, sim_command,
+compare_command, pyramid_command). User errors (bad arguments, unreadable images,
+unwritable outputs) end as one `fastnms: error: ...` line on stderr with exit status 2 and
+leave no output file behind.
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from fastnms.args import EXIT_USAGE, PROG, ArgumentParser, UsageError
 from fastnms.compare_command import add_compare_parser, run_compare
 from fastnms.golden_command import add_golden_parser, run_golden
+from fastnms.pyramid_command import add_pyramid_parser, run_pyramid
 from fastnms.sim_command import add_sim_parser, run_sim
 
 Handler = Callable[[argparse.Namespace], int]
@@ -23,6 +24,7 @@ SUBCOMMANDS: dict[str, tuple[Callable[..., argparse.ArgumentParser], Handler]] =
     "golden": (add_golden_parser, run_golden),
     "sim": (add_sim_parser, run_sim),
     "compare": (add_compare_parser, run_compare),
+    "pyramid": (add_pyramid_parser, run_pyramid),
 }
 
 
@@ -31,7 +33,8 @@ def build_parser() -> ArgumentParser:
         prog=PROG,
         description=(
             "FAST-9/16 corner detection with non-maxima suppression: the golden model, the "
-            "RTL in simulation, and the comparison of the two."
+            "RTL in simulation, the comparison of the two, and the golden model's image "
+            "pyramid."
         ),
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
