@@ -114,10 +114,23 @@ def ecp5_text(row: dict, unit: bool = True) -> str:
 
 
 def target_text(key: str, value: float | None = None) -> str:
-    """The row text of target `key` (reference.toml), with its limit (or `value`)."""
+    """The row text of target `key` (reference.toml), with its limit (or `value`)
+    and its goal if it has one."""
     t = TARGETS[key]
     lim = limit(key) if value is None else value
-    return t["text"].format(**{**t, "limit": num(lim) if isinstance(lim, int) else lim})
+    fields = {**t, "limit": num(lim) if isinstance(lim, int) else lim}
+    if "goal" in t:
+        fields["goal"] = num(t["goal"]) if isinstance(t["goal"], int) else t["goal"]
+    return t["text"].format(**fields)
+
+
+def goal_note(key: str, reached: bool, unit: str) -> str:
+    """For a target met that has a goal: whether the goal is reached too ("" without a goal)."""
+    goal = TARGETS[key].get("goal")
+    if goal is None:
+        return ""
+    text = num(goal) if isinstance(goal, int) else str(goal)
+    return f"; goal {text} {unit}: {'reached' if reached else 'not yet'}"
 
 
 def margin(value: int, lim: int, unit: str, strict: bool = False) -> str:
@@ -135,13 +148,16 @@ def at_most(key: str, value: int, unit: str, on: str) -> dict:
     """Target `key` (a limit, `strict` for "below") evaluated on `value`."""
     t, lim = TARGETS[key], limit(key)
     strict = t.get("strict", False)
+    met = value < lim if strict else value <= lim
+    goal = t.get("goal")
     return {
         "id": key,
         "target": target_text(key),
         "on": on,
         "measured": f"{num(value)} {unit}",
-        "met": value < lim if strict else value <= lim,
-        "margin": margin(value, lim, unit, strict),
+        "met": met,
+        "margin": margin(value, lim, unit, strict)
+        + (goal_note(key, value <= goal, unit) if met and goal is not None else ""),
     }
 
 

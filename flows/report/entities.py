@@ -1,6 +1,7 @@
 """Every row of the synthesis summary, grouped by entity: one heading per entity
 (`#### fastnms_fifo`, anchor `#fastnms_fifo`) that the entity's page links to,
-then its configurations with their generics and figures."""
+then its configurations with their generics and figures (an ORB block alone,
+`orb_block`, points to its row in the ORB part, orb.py)."""
 
 from __future__ import annotations
 
@@ -35,10 +36,15 @@ def entity_lines(summary: list[dict]) -> list[str]:
     )
     out.append("")
     for entity in dict.fromkeys(r["entity"] for r in summary):
-        rows = [r for r in summary if r["entity"] == entity]
+        rows = [r for r in summary if r["entity"] == entity and not r.get("orb_block")]
+        alone = [r for r in summary if r["entity"] == entity and r.get("orb_block")]
         out += [f"#### {entity}", ""]
-        out += table(HEADER, [entity_row(r) for r in rows])
-        out.append("")
+        if rows:
+            out += table(HEADER, [entity_row(r) for r in rows])
+            out.append("")
+        if alone:
+            names = ", ".join(f"`{r['config']}`" for r in alone)
+            out += [f"Alone ({names}): in [ORB blocks alone](#orb-blocks-alone).", ""]
         if entity == "fastnms_axi":
             out += top_notes(summary)
     return out
@@ -83,7 +89,8 @@ def top_notes(summary: list[dict]) -> list[str]:
     tops = [
         r
         for r in summary
-        if r["entity"] == "fastnms_axi" and not r.get("ppc_table") and not r.get("orb_table")
+        if r["entity"] == "fastnms_axi"
+        and not (r.get("ppc_table") or r.get("orb_table") or r.get("orb_block"))
     ]
     out = []
     outside = [r for r in tops if "logic_levels_outside_core" in r]

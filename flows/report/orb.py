@@ -1,22 +1,28 @@
 """ORB in docs/results.md: in the synthesis section the ORB top, the ORB stage
-and the keypoint budget beside the published ORB designs, and their targets;
-in the bench section the golden ORB against cv2.ORB and the top with ORB
-descriptors on the bench frames."""
+and the keypoint budget beside the published ORB designs, and their targets
+(issues 36 and 53), the ORB blocks alone with theirs, and the memories of ORB
+(orb_memory.py); in the bench section the golden ORB against cv2.ORB and the
+top with ORB descriptors on the bench frames."""
 
 from __future__ import annotations
 
 from flows.report.common import (
     at_most,
     ecp5_text,
+    goal_note,
     lut_text,
     lut_total,
+    margin,
+    minutes,
     num,
     nums,
     table,
     target_lines,
     target_text,
 )
-from flows.report.reference import ORB_ANCHORS, XC7Z020, limit
+from flows.report.entities import path_text
+from flows.report.orb_memory import memory_lines
+from flows.report.reference import ORB_ANCHORS, TARGETS, XC7Z020, limit
 
 LABELS = {"top": "the AXI top", "stage": "ORB stage", "budget": "keypoint budget"}
 ROLES = {"fastnms_axi": "top", "fastnms_orb_stage": "stage", "fastnms_cell_budget": "budget"}
@@ -31,9 +37,17 @@ def orb_rows(summary: list[dict]) -> dict[str, dict]:
 # ---- targets ----------------------------------------------------------------------
 
 
+def placed(r: dict) -> bool:
+    """The row was placed and routed (or tried: it did not fit or finish)."""
+    return bool(r.get("ecp5") or r.get("ecp5_result"))
+
+
 def orb_targets(summary: list[dict]) -> list[dict]:
-    """ORB + budget (the stage and the budget summed) and the top in LUT, BRAM18,
-    DSP; the ECP5-8 Fmax of each placed row; the logic levels of each row."""
+    """Issue 36's ORB + budget (the stage and the budget summed) in LUT, BRAM18 and
+    DSP; issue 53's: the top's LUT, BRAM18, place-and-route time and ECP5-8 Fmax, the
+    Fmax of each ORB entity alone (the stage, the budget, the ORB blocks) and the
+    logic levels of the angle, float and rotation units alone. The targets on the
+    ORB blocks alone say so (`block`)."""
     rows = orb_rows(summary)
     out = []
     stage, budget, top = rows.get("stage"), rows.get("budget"), rows.get("top")
@@ -48,37 +62,101 @@ def orb_targets(summary: list[dict]) -> list[dict]:
         on = f"`{top['config']}`"
         out.append(at_most("orb-top-lut", lut_total(top), "LUT", on))
         out.append(at_most("orb-top-bram", top["bram18_equiv"], "BRAM18", on))
-    out += [fmax_target(r) for r in rows.values() if r.get("ecp5") or r.get("ecp5_result")]
-    out += [levels_target(r) for r in rows.values()]
-    return out
+        if placed(top):
+            out += [pnr_target(top), fmax_target(top, "orb-top-fmax")]
+    out += [fmax_target(r, "orb-block-fmax") for r in (stage, budget) if r and placed(r)]
+    return out + block_targets(summary)
 
 
-def fmax_target(r: dict) -> dict:
-    """ECP5-8 Fmax of a placed row; not measured when it did not fit or finish."""
-    least = limit("orb-fmax")
-    fmax = r.get("ecp5_fmax_mhz")
-    device = ((r.get("ecp5") or {}).get("device") or "ECP5").split(" ")[0]
+def block_targets(summary: list[dict]) -> list[dict]:
+    """Issue 53's targets on the ORB blocks alone: each one's ECP5-8 Fmax, the units'
+    logic levels; "not measured" for the blocks the summary does not have."""
+    blocks = [r for r in summary if r.get("orb_block")]
+    out = [fmax_target(r, "orb-block-fmax") for r in blocks if placed(r)]
+    if not out:
+        what = "not placed and routed" if blocks else "not synthesized alone"
+        out.append(absent("orb-block-fmax", "each ORB block alone", what))
+    found = {r["entity"]: r for r in blocks}
+    units = TARGETS["orb-unit-levels"]["entities"]
+    out += [levels_target(found[e]) for e in units if e in found]
+    missing = [f"`{e}`" for e in units if e not in found]
+    if missing:
+        out.append(
+            absent("orb-unit-levels", ", ".join(missing) + " alone", "not synthesized alone")
+        )
+    return [{**t, "block": True} for t in out]
+
+
+def absent(key: str, on: str, what: str) -> dict:
+    """A target on figures the summary does not have (`make synth`'s orb_blocks rows)."""
     return {
-        "id": "orb-fmax",
-        "target": target_text("orb-fmax"),
-        "on": f"`{r['config']}` ({device})",
-        "measured": r.get("ecp5_result") or ("—" if fmax is None else f"{fmax:.1f} MHz"),
-        "met": None if fmax is None else fmax >= least,
-        "margin": "—" if fmax is None else f"{fmax - least:+.1f} MHz ({fmax / least - 1:+.0%})",
+        "id": key,
+        "target": target_text(key),
+        "on": on,
+        "measured": f"{what} in this summary",
+        "met": None,
+        "margin": "—",
     }
 
 
-def levels_target(r: dict) -> dict:
-    most = limit("orb-logic-levels")
-    levels = r["logic_levels"]
+def device_of(r: dict) -> str:
+    return ((r.get("ecp5") or {}).get("device") or "ECP5").split(" ")[0]
+
+
+def fmax_target(r: dict, key: str) -> dict:
+    """ECP5-8 Fmax of a placed row; not measured when it did not fit or finish."""
+    least = limit(key)
+    fmax = r.get("ecp5_fmax_mhz")
+    met = None if fmax is None else fmax >= least
+    spare = "—"
+    if fmax is not None:
+        spare = f"{fmax - least:+.1f} MHz ({fmax / least - 1:+.0%})"
+        if met:
+            spare += goal_note(key, fmax >= TARGETS[key]["goal"], "MHz")
     return {
-        "id": "orb-logic-levels",
-        "target": target_text("orb-logic-levels"),
+        "id": key,
+        "target": target_text(key),
+        "on": f"`{r['config']}` ({device_of(r)})",
+        "measured": r.get("ecp5_result") or ("—" if fmax is None else f"{fmax:.1f} MHz"),
+        "met": met,
+        "margin": spare,
+    }
+
+
+def pnr_target(r: dict) -> dict:
+    """nextpnr's time on a placed row against the flow's limit: not reached when it
+    was stopped or the design did not fit its device."""
+    key = "orb-top-pnr"
+    e = r.get("ecp5") or {}
+    seconds = e.get("nextpnr_seconds")
+    out = {"id": key, "target": target_text(key), "on": f"`{r['config']}` ({device_of(r)})"}
+    if r.get("ecp5_result") or seconds is None:
+        stopped = "does not fit its device" if e.get("does_not_fit") else "did not finish"
+        return {
+            **out,
+            "measured": r.get("ecp5_result") or "—",
+            "met": False if r.get("ecp5_result") else None,
+            "margin": stopped if r.get("ecp5_result") else "—",
+        }
+    s, most = round(seconds), limit(key)
+    met = s <= most
+    text = margin(s, most, "s") + (goal_note(key, s <= TARGETS[key]["goal"], "s") if met else "")
+    return {**out, "measured": f"{s} s ({minutes(seconds)})", "met": met, "margin": text}
+
+
+def levels_target(r: dict) -> dict:
+    key = "orb-unit-levels"
+    most, levels = limit(key), r["logic_levels"]
+    met = levels <= most
+    return {
+        "id": key,
+        "target": target_text(key),
         "on": f"`{r['config']}`",
         "measured": f"{levels} levels",
-        "met": levels <= most,
+        "met": met,
         "margin": f"{most - levels} level(s) to spare"
-        if levels <= most
+        + goal_note(key, levels <= TARGETS[key]["goal"], "levels")
+        if met
         else f"{levels - most} level(s) over",
     }
 
@@ -88,7 +166,8 @@ def levels_target(r: dict) -> dict:
 
 def orb_synth_lines(summary: list[dict]) -> list[str]:
     """The ORB rows (ORB + budget summed), the top's share of a Zynq-7020, the
-    published ORB designs beside the top, the targets."""
+    published ORB designs beside the top, the targets; then the ORB blocks alone
+    with their targets, and the memories of ORB."""
     rows = orb_rows(summary)
     if not rows:
         return []
@@ -113,9 +192,52 @@ def orb_synth_lines(summary: list[dict]) -> list[str]:
     out.append("")
     out += anchor_lines(top)
     out.append("")
-    out.append("Issue 36's targets:")
+    targets = orb_targets(summary)
+    blocks = [r for r in summary if r.get("orb_block")]
+    out.append(
+        "Targets: issue 36's for ORB + budget, issue 53's for the top and each entity alone:"
+    )
     out.append("")
-    out += target_lines(orb_targets(summary))
+    out += target_lines([t for t in targets if not (blocks and t.get("block"))])
+    out.append("")
+    if blocks:
+        out += blocks_lines(blocks)
+        out.append("Issue 53's targets on the blocks alone:")
+        out.append("")
+        out += target_lines([t for t in targets if t.get("block")])
+        out.append("")
+    out += memory_lines(summary, top)
+    return out
+
+
+def blocks_lines(blocks: list[dict]) -> list[str]:
+    """The ORB blocks synthesized alone (yosys xc7) and placed alone (nextpnr)."""
+    body = [
+        [
+            f"`{r['config']}`",
+            ", ".join(f"{k} {v}" for k, v in r["generics"].items()) or "defaults",
+            lut_text(r),
+            num(r["ff"]),
+            str(r["bram18_equiv"]),
+            str(r["dsp"]),
+            str(r["logic_levels"]),
+            ecp5_text(r),
+            path_text((r.get("ecp5") or {}).get("critical_path")),
+        ]
+        for r in blocks
+    ]
+    devices = sorted({device_of(r) for r in blocks if placed(r)})
+    out = ["#### ORB blocks alone", ""]
+    out.append(
+        "Each block of the ORB engine synthesized and placed on its own, out of context, at "
+        "the generics `fastnms_orb_stage` gives it in the ORB top (`fastnms_orb_rows`: the "
+        "blurred rows' buffer); "
+        + (f"ECP5-8 on {', '.join(devices)}" if devices else "none placed in this summary")
+        + ". These rows are listed here only, not in the tables by entity below."
+    )
+    out.append("")
+    header = ["block", "generics", "LUT", "FF", "BRAM18 equiv.", "DSP", "logic levels"]
+    out += table([*header, "ECP5-8 Fmax", "ECP5 critical path"], body)
     out.append("")
     return out
 

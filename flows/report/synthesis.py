@@ -24,8 +24,15 @@ from flows.report.reference import AMD, PAPER, limit
 
 
 def main_rows(summary: list[dict]) -> list[dict]:
-    """The rows at the section's size: neither the PPC nor the ORB comparison's."""
-    return [r for r in summary if not r.get("ppc_table") and not r.get("orb_table")]
+    """The rows at the section's size: neither the PPC nor the ORB comparison's, nor
+    an ORB block alone."""
+    return [r for r in summary if not (r.get("ppc_table") or orb_row(r))]
+
+
+def orb_row(r: dict) -> bool:
+    """A row of the ORB comparison or an ORB block alone (orb.py has their tables and
+    targets)."""
+    return bool(r.get("orb_table") or r.get("orb_block"))
 
 
 def synth_section(summary: list[dict], info: dict) -> str:
@@ -120,7 +127,7 @@ def synth_targets(summary: list[dict]) -> list[dict]:
     """The detector's targets against the paper (sad + region4) and AMD (opencv +
     3x3, at every size), and the logic levels of every row but ORB's (ORB has its
     own, orb.orb_targets)."""
-    summary = [r for r in summary if not r.get("orb_table")]
+    summary = [r for r in summary if not orb_row(r)]
     rows = by_config(summary)
     out = []
     for entity in ("fastnms_axi", "fastnms_core"):

@@ -13,7 +13,7 @@ import pytest
 from fastnms.sim.sources import REPO
 
 from flows.bench import bench as bench_sim
-from flows.report import report
+from flows.report import orb_memory, report
 from flows.report.common import at_most, target_lines
 from flows.report.orb import orb_targets
 from flows.report.ppc import ppc_lines, ppc_targets
@@ -59,7 +59,8 @@ def anchors(markdown: str) -> set[str]:
 
 def test_every_entity_has_its_anchor():
     """Every entity `make synth` measured has a heading of its own in results.md
-    (`#### fastnms_fifo`, anchor `#fastnms_fifo`) with its rows under it, and every
+    (`#### fastnms_fifo`, anchor `#fastnms_fifo`) with its rows under it (an ORB block
+    alone: a link to its row), and every
     link from a page to results.md#... lands on a heading."""
     text = report.RESULTS.read_text()
     summary = json.loads(report.SYNTH_JSON.read_text())
@@ -69,8 +70,10 @@ def test_every_entity_has_its_anchor():
     for entity in entities:
         assert text.count(f"\n#### {entity}\n") == 1 and entity in found, entity
         part = text.split(f"\n#### {entity}\n")[1].split("\n#")[0]
-        configs = [r["config"] for r in summary if r["entity"] == entity]
-        assert all(f"| `{c}` |" in part for c in configs), entity
+        rows = [r for r in summary if r["entity"] == entity]
+        assert all(f"| `{r['config']}` |" in part for r in rows if not r.get("orb_block"))
+        # An ORB block alone: named under its heading, its row in "ORB blocks alone".
+        assert all(f"`{r['config']}`" in part for r in rows if r.get("orb_block")), entity
     pages = [*sorted((REPO / "docs").rglob("*.md")), REPO / "README.md"]
     for page in pages:
         for anchor in re.findall(r"results\.md#([\w-]+)", page.read_text()):
@@ -457,9 +460,13 @@ def test_ppc_fmax_targets_over_seeds():
     assert not uhd["met"] and "lowest of 4 seeds: 120 MHz" in uhd["measured"], uhd
 
 
-def orb_summary(fits: bool = True) -> list[dict]:
+ECP5_85F = {"device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)", "device_key": "85k"}
+
+
+def orb_summary(pnr: str = "done", blocks: bool = False) -> list[dict]:
     """The ORB rows as `make synth` writes them (figures made up here): the top, the
-    stage and the budget; the top placed on the 85F (or not fitting it)."""
+    stage and the budget, the top placed on the 85F (`pnr`: "done" in 900 s,
+    "timeout" after 3000 s, "no fit"); with `blocks`, the ORB blocks alone."""
 
     def row(config: str, entity: str, lut: int, bram: int, dsp: int, levels: int) -> dict:
         return {
@@ -492,32 +499,47 @@ def orb_summary(fits: bool = True) -> list[dict]:
         "DESCRIPTOR": "orb",
         "ORB_MAX_CELL": 16,
     }
-    if fits:
+    ecp5 = {**ECP5_85F, "yosys_seconds": 300.0}
+    if pnr == "done":
         top["ecp5_fmax_mhz"] = 130.0
-        top["ecp5"] = {
-            "device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
-            "device_key": "85k",
-            "nextpnr_seconds": 900.0,
-            "yosys_seconds": 300.0,
-        }
+        top["ecp5"] = {**ecp5, "nextpnr_seconds": 900.0}
+    elif pnr == "timeout":
+        top["ecp5_result"] = "nextpnr stopped after 3000 s (timeout 3000 s)"
+        top["ecp5"] = {**ecp5, "timed_out": top["ecp5_result"], "nextpnr_seconds": 3000.2}
     else:
         top["ecp5_result"] = "does not fit LFE5U-85F: DP16KD 300/208"
-        top["ecp5"] = {
-            "device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
-            "device_key": "85k",
-            "does_not_fit": top["ecp5_result"],
-            "nextpnr_seconds": 2.0,
-            "yosys_seconds": 300.0,
-        }
+        top["ecp5"] = {**ecp5, "does_not_fit": top["ecp5_result"], "nextpnr_seconds": 2.0}
     stage = row("fastnms_orb_stage-opencv-1920", "fastnms_orb_stage", 9000, 90, 21, 13)
     budget = row("fastnms_cell_budget-opencv-k4-1920", "fastnms_cell_budget", 2000, 4, 0, 5)
-    return [top, stage, budget]
+    return [top, stage, budget, *(orb_block_rows() if blocks else [])]
+
+
+def orb_block_rows() -> list[dict]:
+    """ORB blocks alone (`orb_block`), placed on the 45F; the rotation did not fit."""
+    path = {"from": "a", "to": "b", "from_type": "DP16KD", "to_type": "TRELLIS_FF", "ns": 5.0}
+    ecp5 = {"device": "LFE5U-45F-8BG381 (ECP5, speed grade 8)", "device_key": "45k"}
+    out = []
+    for entity, generics, levels, fmax, bram in [
+        ("fastnms_f32_add", {}, 11, 140.0, 0),
+        ("fastnms_f32_mul", {}, 5, 190.0, 0),
+        ("fastnms_orb_angle", {}, 13, 120.0, 0),
+        ("fastnms_orb_rotate", {"LANES": 8}, 6, None, 0),
+        ("fastnms_orb_rows", {"MAX_WIDTH": 1920, "HEIGHT": 37, "SLOTS": 2}, 6, 160.0, 76),
+        ("fastnms_orb_sample", {"LANES": 8}, 4, 155.5, 0),
+    ]:
+        r = summary_row(f"{entity}-orb", entity, "-", "orb", 700, orb_block=True, carry4=5)
+        r.update(generics=generics, logic_levels=levels, bram18_equiv=bram, bram36=bram // 2)
+        r.update(ecp5_fmax_mhz=fmax, ecp5={**ecp5, "nextpnr_seconds": 60.0, "critical_path": path})
+        out.append(r)
+    out[3]["ecp5_result"] = "does not fit LFE5U-45F: TRELLIS_COMB 50000/43848"
+    return out
 
 
 def test_orb_targets():
     """The ORB targets from the ORB rows: ORB + budget summed (LUT with SRL and LUT
-    RAM), the top, Fmax on the 85F, logic levels; a miss is 'not reached'."""
-    targets = orb_targets(orb_summary())
+    RAM), issue 53's on the top (with their goals), each entity's Fmax, the units'
+    logic levels on the blocks alone; a miss is 'not reached'."""
+    targets = orb_targets(orb_summary(blocks=True))
     by = {(t["id"], t["on"]): t for t in targets}
     on = "`fastnms_orb_stage-opencv-1920` + `fastnms_cell_budget-opencv-k4-1920`"
     lut = by[("orb-budget-lut", on)]
@@ -526,27 +548,64 @@ def test_orb_targets():
     assert bram["measured"] == "94 BRAM18" and bram["met"]
     assert by[("orb-budget-dsp", on)]["met"]  # 21 <= 32
     top_lut = by[("orb-top-lut", "`opencv-3x3-orb-1920`")]
-    assert top_lut["measured"] == "13 500 LUT" and top_lut["met"]
+    assert top_lut["target"] == "the ORB top: at most 19 000 LUT (goal 15 000)"
+    assert top_lut["met"] and top_lut["margin"] == "5500 LUT under (29 %); goal 15 000 LUT: reached"
     top_bram = by[("orb-top-bram", "`opencv-3x3-orb-1920`")]
-    assert not top_bram["met"] and top_bram["margin"] == "5 BRAM18 over (5 %)"
-    fmax = [t for t in targets if t["id"] == "orb-fmax"]
-    assert len(fmax) == 1 and fmax[0]["met"] and "LFE5U-85F" in fmax[0]["on"]
-    levels = [t for t in targets if t["id"] == "orb-logic-levels"]
-    assert [t["met"] for t in levels] == [False, False, False]
-    assert levels[0]["margin"] == "9 level(s) over"
+    assert top_bram["met"] and top_bram["margin"] == "at the limit; goal 95 BRAM18: not yet"
+    on85 = "`opencv-3x3-orb-1920` (LFE5U-85F-8BG381)"
+    pnr = by[("orb-top-pnr", on85)]
+    assert pnr["met"] and pnr["measured"] == "900 s (15 min 00 s)"
+    assert pnr["margin"] == "300 s under (25 %); goal 600 s: not yet"
+    fmax = by[("orb-top-fmax", on85)]
+    assert fmax["met"] and fmax["target"].endswith("(goal 148.5 MHz)")
+    assert fmax["margin"] == "+5.0 MHz (+4%); goal 148.5 MHz: not yet"
+    # Each entity alone: the stage and the budget (not placed here), the blocks.
+    blocks = [t for t in targets if t["id"] == "orb-block-fmax"]
+    assert [t["met"] for t in blocks] == [False, True, False, None, True, True]
+    assert all(t.get("block") and "(LFE5U-45F-8BG381)" in t["on"] for t in blocks)
+    assert blocks[1]["margin"] == "+40.0 MHz (+27%); goal 175 MHz: reached"
+    assert blocks[3]["measured"].startswith("does not fit LFE5U-45F")
+    levels = {t["on"]: t for t in targets if t["id"] == "orb-unit-levels"}
+    units = ("orb_angle", "f32_add", "f32_mul", "orb_rotate")
+    assert list(levels) == [f"`fastnms_{e}-orb`" for e in units]
+    assert [t["met"] for t in levels.values()] == [False, False, True, True]
+    assert levels["`fastnms_orb_angle-orb`"]["margin"] == "6 level(s) over"
+    spare = levels["`fastnms_f32_mul-orb`"]["margin"]
+    assert spare == "2 level(s) to spare; goal 5 levels: reached"
     lines = target_lines(targets)
-    assert sum("**not reached**" in line for line in lines) == 4  # top BRAM, 3 x levels
-    assert sum(line.startswith("- *orb-logic-levels*") for line in lines) == 1
-    # The top's BRAM miss gives the reason it shares with ORB + budget's, under its name.
-    assert any(line.startswith("- *orb-top-bram*: Most of it") for line in lines)
+    assert sum("**not reached**" in line for line in lines) == 4  # 2 Fmax, 2 x levels
+    assert sum(line.startswith("- *orb-unit-levels*") for line in lines) == 1
+    assert any(line.startswith("- *orb-block-fmax*: A place and route") for line in lines)
+
+
+def test_orb_targets_not_finished():
+    """The top's place and route stopped: its time 'not reached' with nextpnr's words,
+    its Fmax not measured; without blocks alone their targets are not measured."""
+    targets = orb_targets(orb_summary("timeout"))
+    by = {t["id"]: t for t in targets}
+    pnr = by["orb-top-pnr"]
+    assert pnr["met"] is False and pnr["margin"] == "did not finish"
+    assert pnr["measured"] == "nextpnr stopped after 3000 s (timeout 3000 s)"
+    assert by["orb-top-fmax"]["met"] is None and by["orb-top-fmax"]["margin"] == "—"
+    absent = [t for t in targets if t.get("block")]
+    assert [(t["id"], t["met"]) for t in absent] == [
+        ("orb-block-fmax", None),
+        ("orb-unit-levels", None),
+    ]
+    assert absent[1]["on"].startswith("`fastnms_orb_angle`, `fastnms_f32_add`")
+    lines = "\n".join(target_lines(targets))
+    assert "- *orb-top-pnr*: The top fills about three quarters" in lines
+    not_fit = {t["id"]: t for t in orb_targets(orb_summary("no fit"))}["orb-top-pnr"]
+    assert not not_fit["met"] and not_fit["margin"] == "does not fit its device"
 
 
 def test_orb_synth_section():
     """The synthesis section with the ORB rows: their own table (ORB + budget summed),
     the anchors with their sources, the targets; a top that does not fit its device says
     so in every table and its Fmax target is 'not measured'; the ORB rows stay out of
-    the paper/AMD comparison and its targets."""
-    rows = orb_summary(fits=False)
+    the paper/AMD comparison and its targets; without blocks alone no table of them,
+    the memory table from the top's generics."""
+    rows = orb_summary("no fit")
     info = {
         "ecp5_orb_device": "LFE5U-85F-8BG381 (ECP5, speed grade 8)",
         "ecp5_timeout_seconds": 3600,
@@ -556,22 +615,121 @@ def test_orb_synth_section():
     assert (
         "| ORB + budget | the two rows above, summed | 12 000 | 22 000 | 94 | 21 | 13 | — |" in text
     )
-    assert text.count("does not fit LFE5U-85F: DP16KD 300/208") >= 3  # ORB table, anchors, detail
+    assert text.count("does not fit LFE5U-85F: DP16KD 300/208") >= 4  # ORB, targets, anchors
     assert "| Siudya/ORB_FPGA (HLS, PYNQ-Z2 = xc7z020) |" in text and "| 35 807 | 54 895 |" in text
     assert "Electronics (MDPI) 2022" in text and "| 174 737 |" in text
-    assert "**not measured**" in text and "- *orb-fmax*" in text
+    assert "**not measured**" in text and "- *orb-top-fmax*" in text
     assert "0.38 times Siudya/ORB_FPGA's LUTs" in text  # 13 500 / 35 807
     side = text.split("### Side by side")[1].split("### Targets")[0]
     assert "orb" not in side
     issue6 = text.split("### Targets")[1].split("###")[0]
     assert "orb" not in issue6
     assert "The ORB rows are placed and routed on the LFE5U-85F" in text
+    assert "ORB blocks alone" not in text and "not synthesized alone in this summary" in text
+    memory = text.split("\n#### ORB memory\n")[1].split("\n###")[0]
+    assert "| `fastnms_orb_rows` | blurred rows: 2·CELL + 36 kept" in memory
+    assert "| 37 × 4096 × 8 | 1 212 416 | 74 |" in memory and "| **146** |" in memory
+    assert "| `fastnms_orb_stage-opencv-1920` | 10 (3 in block RAM) | 2 477 760 | 137 | 90 (" in (
+        memory
+    )
     # Each entity's rows under its own heading, the top's generics beside them.
     top = text.split("\n#### fastnms_axi\n")[1].split("\n#")[0]
     assert "| `opencv-3x3-orb-1920` | MAX_WIDTH 1920, MAX_HEIGHT 1080, SCORE opencv," in top
     assert "| 13500 (13000 + 100 SRL + 400 LUT RAM) |" in top
     for entity in ("fastnms_orb_stage", "fastnms_cell_budget"):
         assert f"\n#### {entity}\n" in text
+
+
+def test_orb_blocks_section():
+    """The ORB blocks alone: their table and their targets under it, in no other
+    table or target (the entity headings point to them); the measured BRAM18 of the
+    row buffer beside the formulas'; the top's nextpnr time in the targets."""
+    rows = [summary_row("sad-region4-1920", "fastnms_axi", "sad", "region4", 2900)]
+    rows += orb_summary("timeout", blocks=True)
+    text = report.synth_section(rows, {})
+    part = text.split("\n#### ORB blocks alone\n")[1].split("\n#### ORB memory\n")[0]
+    table_part, targets = part.split("Issue 53's targets on the blocks alone:")
+    assert "| `fastnms_orb_rows-orb` | MAX_WIDTH 1920, HEIGHT 37, SLOTS 2 | 700 | 1000 | 76 |" in (
+        table_part
+    )
+    assert "| `fastnms_f32_add-orb` | defaults | 700 | 1000 | 0 | 0 | 11 | 140 MHz |" in table_part
+    assert "does not fit LFE5U-45F: TRELLIS_COMB 50000/43848" in table_part
+    assert "DP16KD → TRELLIS_FF, 5.00 ns" in table_part
+    assert targets.count("each ORB entity alone") == 6 and targets.count("logic levels") == 4
+    main = text.split("### ORB descriptors")[1].split("\n#### ORB blocks alone\n")[0]
+    assert "-orb`" not in main and "not synthesized alone" not in main
+    assert "| `opencv-3x3-orb-1920` (LFE5U-85F-8BG381) | nextpnr stopped after 3000 s" in main
+    # Out of the issue-6 targets (logic levels over 1 entry) and of the tables by entity.
+    assert "| all 1 entries | worst 4 |" in text
+    add = text.split("\n#### fastnms_f32_add\n")[1].split("\n#")[0]
+    assert "|" not in add and "`fastnms_f32_add-orb`" in add and "(#orb-blocks-alone)" in add
+    memory = text.split("\n#### ORB memory\n")[1]
+    assert "| `fastnms_orb_rows-orb` | 2 (1 in block RAM) | 1 217 152 | 74 | 76 (" in memory
+    assert "| `fastnms_orb_sample-orb` | 1 (0 in block RAM) | 154 624 | 0 | 0 (" in memory
+
+
+def test_orb_memory_formulas():
+    """The memory table's formulas at MAX_WIDTH 1920 and CELL 16, then 32, against
+    figures worked out by hand from the RTL; and against the RTL's own constants."""
+    g = orb_memory.Generics(width=1920, height=1080, cell=16, per_cell=4, score_bits=8)
+    bits = {
+        m["memory"].name.split(":")[0]: (m["bits"], m["bram18"]) for m in orb_memory.memories(g)
+    }
+    assert bits["blurred rows"] == (37 * 2 * 2048 * 8, 74)  # 74 rows >= 2 x 16 + 36
+    assert bits["unblurred rows"] == (31 * 2 * 2048 * 8, 62)  # 62 rows >= 2 x 16 + 30
+    assert bits["record queue (a cell row's records)"] == (512 * 30, 1)  # 120 x 4 + 2 words
+    assert bits["corner FIFO (record, angle and descriptor)"] == (512 * (4 + 30 + 288), 9)
+    assert bits["pattern tables (PA twice, PB, NB; two banks)"] == (4 * 8 * 64 * 33, 0)
+    copies = 2 * (64 * 8 * (21 + 27 + 29) + 128 * 8 * 37)  # reaches 10, 13, 14, 18
+    assert bits["patch copies (one per lane, two banks)"] == (copies, 0)
+    assert bits["keypoint queues (one per image)"] == (2 * 16 * (2 * 13 + 30), 0)
+    big = orb_memory.Generics(width=3840, height=2160, cell=32, per_cell=15, score_bits=12)
+    by = {m["memory"].name.split(":")[0]: m for m in orb_memory.memories(big)}
+    assert by["blurred rows"]["shape"] == [(37, 3 * 4096, 8)]  # 111 rows >= 2 x 32 + 36
+    assert by["unblurred rows"]["shape"] == [(31, 4 * 4096, 8)]  # 124 rows >= 2 x 32 + 30
+    assert by["blurred rows"]["bram18"] == 37 * 6
+    assert by["record queue (a cell row's records)"]["shape"] == [(1, 4096, 12 + 12 + 12)]
+    # The RTL's constants, evaluated as VHDL integers.
+    feed = vhdl(REPO / "rtl/orb/fastnms_orb_feed.vhd")
+    slots_for = re.search(r"return (\(2 \* MAX_CELL[^;]+);", feed).group(1)
+    for cell in (16, 32, 64, 128, 256):
+        for half in (15, 18):
+            rtl = vhdl_eval(slots_for, MAX_CELL=cell, half=half)
+            assert orb_memory.slots(cell, half) == rtl
+            assert rtl * (2 * half + 1) >= 2 * cell + 2 * half
+    assert "((half => 15, slots => slots_for(15)), (half => 18, slots => slots_for(18)))" in feed
+    stage = vhdl(REPO / "rtl/orb/fastnms_orb_stage.vhd")
+    rows = vhdl_constant(stage, "ROW_RECORDS")
+    depth = vhdl_constant(stage, "QUEUE_DEPTH").replace("ROW_RECORDS", f"({rows})")
+    for width, k in ((1920, 4), (1920, 15), (3840, 15), (640, 1)):
+        g = orb_memory.Generics(width=width, height=1080, cell=16, per_cell=k, score_bits=8)
+        queue = next(m for m in orb_memory.memories(g) if m["memory"].where == "stage")
+        rtl = vhdl_eval(depth, MAX_WIDTH=width, MAX_PER_CELL=k)
+        assert queue["shape"] == [(1, orb_memory.fifo_words(rtl), g.record_bits)]
+    rotate = vhdl(REPO / "rtl/orb/fastnms_orb_rotate.vhd")
+    assert "table : for t in 0 to 3 generate" in rotate and "DEPTH => 64, WIDTH => 33" in rotate
+    sample = vhdl(REPO / "rtl/orb/fastnms_orb_sample.vhd")
+    assert vhdl_constant(sample, "SLOT") == "32 * ((ROWS + 31) / 32)" and "2 * SLOT," in sample
+    assert orb_memory.lane_reach(8) == [10, 10, 13, 13, 14, 14, 18, 18]
+    output = vhdl(REPO / "rtl/top/fastnms_record_output.vhd")
+    assert vhdl_constant(output, "FIFO_BITS") == "4 + FIELD_BITS + PAYLOAD_BITS"
+    assert "return 288;" in output
+    assert "constant ORB_LANES : positive := 8;" in vhdl(REPO / "rtl/common/fastnms_pkg.vhd")
+
+
+def vhdl(path) -> str:
+    return path.read_text()
+
+
+def vhdl_constant(text: str, name: str) -> str:
+    """The expression of VHDL constant `name` in `text`."""
+    return re.search(rf"constant {name}\s*:\s*\w+\s*:=\s*([^;]+);", text).group(1).strip()
+
+
+def vhdl_eval(expression: str, **names: int) -> int:
+    """A VHDL integer expression of `names` (`/` truncates, `maximum` is max)."""
+    python = expression.replace("/", "//").replace("maximum", "max")
+    return eval(python, {"max": max}, names)
 
 
 def test_orb_bench_section():
