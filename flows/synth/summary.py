@@ -165,10 +165,10 @@ def block_entries(width: int, height: int) -> list[Entry]:
     generics they have inside the top at this size: the window and its line
     buffer and RAM, the corner FIFO and skid buffer (32-bit records of opencv at
     1920x1080), the 32-bit statistics counter, the position counter, the
-    `none` NMS, the 3x3 NMS's serializer for 4 pixels per clock, and the keypoint
-    budget with 12-bit scores and 15 keypoints per cell, alone at 3840 and in the
-    opencv + 3x3 top at this size (NMS named `3x3+budget`, so that the top's
-    targets keep to the top without it)."""
+    `none` NMS, the pyramid's resizer, the 3x3 NMS's serializer for 4 pixels
+    per clock, and the keypoint budget with 12-bit scores and 15 keypoints per
+    cell, alone at 3840 and in the opencv + 3x3 top at this size (NMS named
+    `3x3+budget`, so that the top's targets keep to the top without it)."""
     size = {"MAX_WIDTH": width, "MAX_HEIGHT": height}
     blocks = {
         "fastnms_window": size,
@@ -179,6 +179,8 @@ def block_entries(width: int, height: int) -> list[Entry]:
         "fastnms_counter": {"WIDTH": 32},
         "fastnms_position": {"X_BITS": 11, "Y_BITS": 11},
         "fastnms_nms_none": {**size, "SCORE_BITS": 8},
+        # One step of the image pyramid (issue 54).
+        "fastnms_resize": size,
         # As in the 3x3 NMS with 4 pixels per clock at this width.
         "fastnms_nms_serializer": {
             "PPC": 4,
