@@ -16,13 +16,17 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, RisingEdge
 from fastnms.golden.pyramid import axis_taps, level_size, resize_linear_exact
 
-from tb.stream import StreamSink, value
+from tb.stream import StreamSink, sim_ns, value
 
 GENERICS = ast.literal_eval(os.environ["TB_GENERICS"])
 MAX_W, MAX_H = GENERICS["MAX_WIDTH"], GENERICS["MAX_HEIGHT"]
 PERIOD_NS = 10
-# Clocks a change of the sizes may hold the input: the two divisions and the taps' start.
-SIZES_CLOCKS = 1600
+# Clocks a change of the sizes may hold the input: the two divisions and the taps' start
+# (docs/fastnms_resize.md).
+SIZES_CLOCKS = 1200
+# Clocks from the source pixel that completes a destination pixel to that pixel on the
+# output, the output always ready (docs/fastnms_resize.md).
+LATENCY = 14
 
 
 class TB:
@@ -38,6 +42,7 @@ class TB:
         self.errors = {"err_size": 0, "err_frame": 0, "err_line": 0}
         self.sink = StreamSink(dut, dut.clk, "out", ["data", "sof", "eol"], self.rng, stall)
         self.held = 0  # clocks with in_valid high and in_ready low
+        self.accepted: list[int] = []  # the time of each pixel taken
 
     async def reset(self) -> None:
         self.dut.rst.value = 1
@@ -80,6 +85,7 @@ class TB:
             await RisingEdge(dut.clk)
             while not value(dut.in_ready):
                 await RisingEdge(dut.clk)
+            self.accepted.append(sim_ns())
         dut.in_valid.value = 0
 
     async def drain(self, count: int, limit: int = 20000) -> None:
@@ -139,7 +145,11 @@ async def frames_at_sizes(dut, idle: float, stall: float, count: int) -> TB:
         img = tb.image(sw, sh)
         expected.append(resize_linear_exact(img, dw, dh))
         dut._log.info("frame %dx%d -> %dx%d", sw, sh, dw, dh)
+        held = tb.held
         await tb.send(img)
+        if not stall:
+            assert tb.held - held <= SIZES_CLOCKS, f"input held {tb.held - held} clocks"
+        dut._log.info("input held %d clocks", tb.held - held)
     await tb.drain(sum(e.size for e in expected))
     tb.check(expected)
     assert tb.errors == {"err_size": 0, "err_frame": 0, "err_line": 0}, tb.errors
@@ -157,10 +167,19 @@ async def idles_and_back_pressure(dut):
     await frames_at_sizes(dut, 0.3, 0.4, 10)
 
 
+def completing_pixels(sw: int, sh: int, dw: int, dh: int) -> list[int]:
+    """For each destination pixel, the raster index of the source pixel that completes it."""
+    xo, xc = axis_taps(sw, dw)
+    yo, yc = axis_taps(sh, dh)
+    x_need, y_need = xo + (xc != 256), yo + (yc != 256)
+    return [int(y) * sw + int(x) for y in y_need for x in x_need]
+
+
 @cocotb.test()
 async def input_never_held(dut):
     """Same sizes frame after frame, no idle, output always ready: after the first frame's
-    start (the scales), in_ready never drops; W x H clocks per frame."""
+    start (the scales), in_ready never drops; each destination pixel leaves LATENCY clocks
+    after the source pixel that completes it."""
     tb = TB(dut)
     await tb.reset()
     tb.start()
@@ -175,6 +194,9 @@ async def input_never_held(dut):
     assert tb.held == 0, f"input held {tb.held} clocks"
     await tb.drain(4 * dw * dh)
     tb.check([resize_linear_exact(img, dw, dh) for img in imgs])
+    done = [n * sw * sh + i for n in range(4) for i in completing_pixels(sw, sh, dw, dh)]
+    waits = {(t - tb.accepted[i]) // PERIOD_NS for i, t in zip(done, tb.sink.times, strict=True)}
+    assert waits == {LATENCY}, f"latencies {sorted(waits)}"
 
 
 @cocotb.test()
