@@ -121,7 +121,7 @@ bench: setup
 lint: setup
 	$(VENV)/bin/ruff check --quiet .
 	$(VENV)/bin/ruff format --check --quiet .
-	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd tb/vhdl/*.vhd tb/nms/vhdl/*.vhd 2>&1) || \
+	@out=$$($(VENV)/bin/vsg --configuration vsg.yaml --all_phases -f rtl/*/*.vhd tb/vhdl/*.vhd tb/nms/vhdl/*.vhd sim/*.vhd 2>&1) || \
 	  { echo "$$out"; echo "make: vsg found style errors (fix with: $(VENV)/bin/vsg -c vsg.yaml --fix -f FILE)"; exit 1; }
 	@echo "lint: ruff and vsg clean"
 

@@ -453,3 +453,37 @@ def test_help_mentions_levels(capsys):
     with pytest.raises(SystemExit):
         cli.main(["--help"])
     assert "pyramid" in capsys.readouterr().out
+
+
+def test_pyramid_rtl_equals_the_golden_model(tmp_path: Path, capsys):
+    """--rtl: cv2.ORB's 8 levels of a 1920x1080 photograph from the simulated chain of
+    resizers (sim/pyramid.py, built once): every level equal to the golden model's, the
+    input never held, one clock per pixel and the latency."""
+    from fastnms.golden.image import load_grey
+    from fastnms.testing.images import cover, real_images
+
+    img = cover(load_grey(real_images()[0]), 1920, 1080)
+    path = tmp_path / "photo.png"
+    assert cv2.imwrite(str(path), img)
+    out = tmp_path / "levels"
+    status, stdout, err = run(
+        ["pyramid", str(path), "--levels", "8", "--out", str(out), "--rtl"], capsys
+    )
+    assert (status, err) == (0, ""), err
+    note = stdout.splitlines()[-1]
+    assert note.endswith("; equal to the golden model's"), note
+    clocks = int(re.search(r"in (\d+) clocks", note).group(1))
+    assert "input held 0 clocks" in note
+    # W x H clocks of input, then the last levels' pipelines (14 clocks each at most).
+    assert 1920 * 1080 <= clocks <= 1920 * 1080 + 7 * 14 + 20, clocks
+    for k, level in enumerate(pyramid.pyramid(img, 8)):
+        assert np.array_equal(cv2.imread(str(out / f"level_{k}.png"), cv2.IMREAD_UNCHANGED), level)
+
+
+def test_pyramid_rtl_refuses_tiny_levels(tmp_path: Path, rng, capsys):
+    path = tmp_path / "small.png"  # levels 3x3, 2x2, 2x2, 2x2, 1x1, ...
+    assert cv2.imwrite(str(path), rng.integers(0, 256, (3, 3), dtype=np.uint8))
+    argv = ["pyramid", str(path), "--levels", "8", "--out", str(tmp_path / "p"), "--rtl"]
+    status, stdout, err = run(argv, capsys)
+    assert_usage_error(status, stdout, err)
+    assert "shrinks sources of at least 2x2 pixels" in err

@@ -9,8 +9,9 @@ section whose JSON is missing says it has not run.
     python -m flows.report.report --check   fail if docs/results.md is not what they render to
 
 The sections: synthesis.py (with ppc.py, orb.py and entities.py), bench.py
-(with engines.py and orb.py); common.py has the formatting and the targets'
-evaluation.
+(with engines.py and orb.py), pyramid.py (issue 54's plan of an 8-level ORB IP, with
+pyramid_memory.py: from formulas and, where they exist, the synthesis summary's rows);
+common.py has the formatting and the targets' evaluation.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from pathlib import Path
 from flows.report.bench import bench_section, budget_lines
 from flows.report.common import REPO, minutes, source_state
 from flows.report.orb import orb_rtl_lines
+from flows.report.pyramid import pyramid_section
 from flows.report.synthesis import synth_section
 
 # What the flows import from here (flows/synth/summary.py, flows/bench/bench.py and
@@ -53,7 +55,7 @@ GENERATED = (
 
 def render(summary: list[dict] | None, info: dict | None, bench: dict | None) -> str:
     """The whole page from the synthesis summary and run, and the bench summary
-    (None: not run yet)."""
+    (None: not run yet); the pyramid plan from formulas and the summary's rows."""
     synth = (
         synth_section(summary, info or {})
         if summary is not None
@@ -64,7 +66,8 @@ def render(summary: list[dict] | None, info: dict | None, bench: dict | None) ->
         if bench is not None
         else "## Simulation, memory and software (`make bench`)\n\nNot run yet: `make bench`."
     )
-    return "\n\n".join([GENERATED, INTRO.read_text().strip(), synth, sim]) + "\n"
+    plan = pyramid_section(summary).strip()
+    return "\n\n".join([GENERATED, INTRO.read_text().strip(), synth, sim, plan]) + "\n"
 
 
 def files(docs: Path) -> tuple[Path, Path, Path, Path]:

@@ -1,6 +1,7 @@
--- Tests only: LEVELS - 1 fastnms_resize in a chain (an image pyramid), each
+-- Simulation only: LEVELS - 1 fastnms_resize in a chain (an image pyramid), each
 -- level's sizes from flat vectors, each link's handshake and data shown on
--- flat ports for the testbench to record (tb/resize/resize_chain_tb.py).
+-- flat ports to record (tb/resize/resize_chain_tb.py; the pyramid engine,
+-- sim/pyramid.py).
 library ieee;
   use ieee.std_logic_1164.all;
   use ieee.numeric_std.all;
