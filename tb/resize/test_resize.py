@@ -18,8 +18,8 @@ def test_resize(request, case):
     )
 
 
-# The chain of steps (tests only, flat ports for GHDL's VPI).
-CHAIN = Path(__file__).with_name("vhdl") / "fastnms_resize_chain.vhd"
+# The chain of steps (sim/, flat ports for GHDL's VPI).
+CHAIN = Path(__file__).resolve().parents[2] / "sim" / "fastnms_resize_chain.vhd"
 
 
 @pytest.mark.parametrize(
