@@ -594,7 +594,7 @@ def test_orb_targets_not_finished():
     ]
     assert absent[1]["on"].startswith("`fastnms_orb_angle`, `fastnms_f32_add`")
     lines = "\n".join(target_lines(targets))
-    assert "- *orb-top-pnr*: The top fills about three quarters" in lines
+    assert "- *orb-top-pnr*: The ORB sampler's patch copies are LUT RAM" in lines
     not_fit = {t["id"]: t for t in orb_targets(orb_summary("no fit"))}["orb-top-pnr"]
     assert not not_fit["met"] and not_fit["margin"] == "does not fit its device"
 
