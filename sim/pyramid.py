@@ -24,8 +24,15 @@ import numpy as np
 
 from .ghdl import tool_version
 from .sources import rtl_sources
-from .verilator import BUILD, CXXFLAGS, VERILATOR_FLAGS, EngineError, fix_bit_strings
-from .verilator import _check_tools, _run_logged
+from .verilator import (
+    BUILD,
+    CXXFLAGS,
+    VERILATOR_FLAGS,
+    EngineError,
+    _check_tools,
+    _run_logged,
+    fix_bit_strings,
+)
 
 TOP = "fastnms_resize_chain"
 WRAPPER = Path(__file__).with_name("fastnms_resize_chain.vhd")
