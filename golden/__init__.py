@@ -11,7 +11,6 @@ from .image import ImageError, load_grey
 from .model import NMS_MODES, SCORES, detect
 from .nms import nms_3x3, nms_none, nms_region
 from .orb import OrbFeatures, detect_and_compute, orb_features
-from .pyramid import level_size, pyramid, resize_linear_exact
 
 __all__ = [
     "CIRCLE_OFFSETS",
@@ -28,7 +27,4 @@ __all__ = [
     "nms_none",
     "nms_region",
     "orb_features",
-    "level_size",
-    "pyramid",
-    "resize_linear_exact",
 ]
