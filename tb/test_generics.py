@@ -37,6 +37,9 @@ ILLEGAL = {
     "fastnms_orb_rows": ({"HEIGHT": 1}, "HEIGHT must be at least 2"),
     "fastnms_orb_feed": ({"MAX_CELL": 20}, "MAX_CELL must be 16, 32, 64, 128 or 256"),
     "fastnms_orb_stage": ({"MAX_PER_CELL": 16}, "MAX_PER_CELL must be 1 .. 15"),
+    "fastnms_resize_scale": ({"SIZE_BITS": 13}, "SIZE_BITS must be at most 12"),
+    "fastnms_resize_taps": ({"SIZE_BITS": 13}, "SIZE_BITS must be at most 12"),
+    "fastnms_resize": ({"MAX_WIDTH": 5000}, "MAX_WIDTH and MAX_HEIGHT must be at most 4095"),
     "fastnms_core": ({"NMS": "5x5"}, "NMS must be"),
     "fastnms_axi_regs": ({"CORNER_FIFO_DEPTH": 70000}, "CORNER_FIFO_DEPTH must be below 65536"),
     "fastnms_axil_slave": ({"WORDS": 2000}, "WORDS must fit in the ADDR_WIDTH space"),
@@ -50,6 +53,7 @@ ILLEGAL = {
 # (GHDL refuses those at elaboration already).
 NOTHING_TO_CHECK = {
     "fastnms_skid_buffer": "WIDTH: any positive width works",
+    "fastnms_resize_walk": "SIZE_BITS: any positive width works (a count of positions)",
     "fastnms_video_gate": "DATA_WIDTH: any positive width works",
 }
 # More illegal values of entities with several checks: (entity, generics, message).

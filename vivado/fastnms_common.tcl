@@ -30,11 +30,11 @@ namespace eval fastnms {
     # period, 7.000 ns.
     variable io_pll_mhz  1000.0
     variable fclk_divide 7
-    # With a region NMS: 1000 / 8 = 125 MHz (fastnms::fclk_mhz).
-    variable region_fclk_divide 8
+    # With a region NMS: 1000 / 9 = 111.111 MHz (fastnms::fclk_mhz).
+    variable region_fclk_divide 9
 
     # RTL folders, lowest layer first.
-    variable areas {common fast nms budget orb core top}
+    variable areas {common fast nms budget orb resize core top}
 
     # The out-of-context clock constraint (aclk).
     variable ooc_xdc [file join $repo constraints fastnms_ooc.xdc]

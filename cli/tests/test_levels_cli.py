@@ -449,7 +449,7 @@ def test_help_mentions_levels(capsys):
         assert info.value.code == 0
         text = " ".join(capsys.readouterr().out.split())
         assert "--levels N" in text and "--scale-factor F" in text and "1..32" in text
-    assert "--out DIR" in text and "--rtl" not in text
+    assert "--out DIR" in text and "--rtl" in text
     with pytest.raises(SystemExit):
         cli.main(["--help"])
     assert "pyramid" in capsys.readouterr().out
