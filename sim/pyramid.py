@@ -11,7 +11,6 @@ engine (sim/verilator.py) is.
 from __future__ import annotations
 
 import fcntl
-import hashlib
 import os
 import shutil
 import subprocess
@@ -22,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .ghdl import tool_version
 from .sources import rtl_sources
 from .verilator import (
     BUILD,
@@ -31,6 +29,7 @@ from .verilator import (
     EngineError,
     _check_tools,
     _run_logged,
+    build_key,
     fix_bit_strings,
 )
 
@@ -50,26 +49,14 @@ class PyramidRun:
     errors: int  # error pulses of all steps
 
 
-def _key(generics: dict[str, int]) -> str:
-    h = hashlib.sha256()
-    for name in sorted(generics):
-        h.update(f"{name}={generics[name]}\n".encode())
-    for path in [*rtl_sources(), WRAPPER, HARNESS]:
-        h.update(path.name.encode())
-        h.update(path.read_bytes())
-    for tool in (["ghdl", "--version"], ["verilator", "--version"], ["g++", "--version"]):
-        h.update(tool_version(tool).encode())
-    h.update(" ".join([*VERILATOR_FLAGS, CXXFLAGS]).encode())
-    return h.hexdigest()[:16]
-
-
 def build(max_width: int, max_height: int, levels: int) -> tuple[Path, float | None]:
     """The executable for these generics, built if needed; returns it and the build's
     seconds (None when it was already built)."""
     _check_tools()
     generics = {"LEVELS": levels, "MAX_WIDTH": max_width, "MAX_HEIGHT": max_height}
     name = "-".join(f"{k}{v}" for k, v in sorted(generics.items()))
-    where = BUILD / f"pyramid-{name}-{_key(generics)}"
+    key = build_key(generics, [*rtl_sources(), WRAPPER, HARNESS])
+    where = BUILD / f"pyramid-{name}-{key}"
     where.mkdir(parents=True, exist_ok=True)
     exe = where / "fastnms_pyramid_vsim"
     with open(where / ".lock", "w") as lock:

@@ -118,11 +118,13 @@ def _check_tools() -> None:
         )
 
 
-def build_key(generics: dict[str, object]) -> str:
+def build_key(generics: dict[str, object], files: Sequence[Path] | None = None) -> str:
+    """A hash of the generics, the files an executable is made from (by default the
+    RTL, this engine's harness and the register header), the tools and the flags."""
     h = hashlib.sha256()
     for name in sorted(generics):
         h.update(f"{name}={generics[name]}\n".encode())
-    for path in [*rtl_sources(), HARNESS, REGS_HEADER]:
+    for path in files if files is not None else [*rtl_sources(), HARNESS, REGS_HEADER]:
         h.update(path.name.encode())
         h.update(path.read_bytes())
     for tool in (["ghdl", "--version"], ["verilator", "--version"], ["g++", "--version"]):
