@@ -190,13 +190,23 @@ class Memory:
     shape: Callable[[Generics], Shape]
 
 
-def _sampler(g: Generics) -> Shape:
-    """Per lane: two banks of SLOT columns of 2 R + 1 rows (fastnms_orb_sample)."""
-    out: Shape = []
-    for r in lane_reach(g.lanes):
-        rows = 2 * r + 1
-        out.append((1, 2 * 32 * ((rows + 31) // 32), 8 * rows))
-    return out
+# fastnms_orb_sample: a lane's copy of more than this many rows is block RAM.
+SAMPLER_LUT_ROWS = 32
+
+
+def _sampler(in_block: bool) -> Callable[[Generics], Shape]:
+    """Per lane: two banks of 2 R + 1 columns of 2 R + 1 rows (fastnms_orb_sample),
+    the copies of more than SAMPLER_LUT_ROWS rows (in_block) or the others."""
+
+    def shape(g: Generics) -> Shape:
+        out: Shape = []
+        for r in lane_reach(g.lanes):
+            rows = 2 * r + 1
+            if (rows > SAMPLER_LUT_ROWS) == in_block:
+                out.append((1, 2 * rows, 8 * rows))
+        return out
+
+    return shape
 
 
 MEMORIES: list[Memory] = [
@@ -271,11 +281,25 @@ MEMORIES: list[Memory] = [
         lambda g: [(4 * g.lanes, 64, 33)],
     ),
     Memory(
-        "sampler",
-        "patch copies (one per lane, two banks)",
+        "rotation",
+        "point FIFO (a step's points, first and last)",
         LUT_RAM,
-        "per lane: 2 · 32⌈(2 R + 1) / 32⌉ words × 8 (2 R + 1) bits, R its reach",
-        _sampler,
+        "16 words × (12 · LANES + 2) bits",
+        lambda g: [(1, 16, 12 * g.lanes + 2)],
+    ),
+    Memory(
+        "sampler",
+        "patch copies of more than 32 rows (one per lane, two banks)",
+        BLOCK_RAM,
+        "per lane with 2 R + 1 > 32: 2 (2 R + 1) words × 8 (2 R + 1) bits, R its reach",
+        _sampler(in_block=True),
+    ),
+    Memory(
+        "sampler",
+        "patch copies of up to 32 rows (one per lane, two banks)",
+        LUT_RAM,
+        "per lane with 2 R + 1 ≤ 32: 2 (2 R + 1) words × 8 (2 R + 1) bits, R its reach",
+        _sampler(in_block=False),
     ),
 ]
 

@@ -594,7 +594,7 @@ def test_orb_targets_not_finished():
     ]
     assert absent[1]["on"].startswith("`fastnms_orb_angle`, `fastnms_f32_add`")
     lines = "\n".join(target_lines(targets))
-    assert "- *orb-top-pnr*: The ORB sampler's patch copies are LUT RAM" in lines
+    assert "- *orb-top-pnr*: Most of the LFE5U-85F's LUT RAM" in lines
     not_fit = {t["id"]: t for t in orb_targets(orb_summary("no fit"))}["orb-top-pnr"]
     assert not not_fit["met"] and not_fit["margin"] == "does not fit its device"
 
@@ -628,8 +628,8 @@ def test_orb_synth_section():
     assert "ORB blocks alone" not in text and "not synthesized alone in this summary" in text
     memory = text.split("\n#### ORB memory\n")[1].split("\n###")[0]
     assert "| `fastnms_orb_rows` | blurred rows: 2·CELL + 36 kept" in memory
-    assert "| 37 × 4096 × 8 | 1 212 416 | 74 |" in memory and "| **146** |" in memory
-    assert "| `fastnms_orb_stage-opencv-1920` | 10 (3 in block RAM) | 2 477 760 | 137 | 90 (" in (
+    assert "| 37 × 4096 × 8 | 1 212 416 | 74 |" in memory and "| **164** |" in memory
+    assert "| `fastnms_orb_stage-opencv-1920` | 11 (4 in block RAM) | 2 431 296 | 155 | 90 (" in (
         memory
     )
     # Each entity's rows under its own heading, the top's generics beside them.
@@ -665,7 +665,7 @@ def test_orb_blocks_section():
     assert "|" not in add and "`fastnms_f32_add-orb`" in add and "(#orb-blocks-alone)" in add
     memory = text.split("\n#### ORB memory\n")[1]
     assert "| `fastnms_orb_rows-orb` | 2 (1 in block RAM) | 1 217 152 | 74 | 76 (" in memory
-    assert "| `fastnms_orb_sample-orb` | 1 (0 in block RAM) | 154 624 | 0 | 0 (" in memory
+    assert "| `fastnms_orb_sample-orb` | 2 (1 in block RAM) | 108 160 | 18 | 0 (" in memory
 
 
 def test_orb_memory_formulas():
@@ -680,8 +680,12 @@ def test_orb_memory_formulas():
     assert bits["record queue (a cell row's records)"] == (512 * 30, 1)  # 120 x 4 + 2 words
     assert bits["corner FIFO (record, angle and descriptor)"] == (512 * (4 + 30 + 288), 9)
     assert bits["pattern tables (PA twice, PB, NB; two banks)"] == (4 * 8 * 64 * 33, 0)
-    copies = 2 * (64 * 8 * (21 + 27 + 29) + 128 * 8 * 37)  # reaches 10, 13, 14, 18
-    assert bits["patch copies (one per lane, two banks)"] == (copies, 0)
+    assert bits["point FIFO (a step's points, first and last)"] == (16 * 98, 0)
+    # Reaches 10, 13, 14 (LUT RAM) and 18 (block RAM, 74 x 296 bits: 9 RAMB18 of 512 x 36).
+    copies = 2 * (2 * 8 * (21 * 21 + 27 * 27 + 29 * 29))
+    assert bits["patch copies of up to 32 rows (one per lane, two banks)"] == (copies, 0)
+    copies = 2 * (2 * 37 * 8 * 37)
+    assert bits["patch copies of more than 32 rows (one per lane, two banks)"] == (copies, 18)
     assert bits["keypoint queues (one per image)"] == (2 * 16 * (2 * 13 + 30), 0)
     big = orb_memory.Generics(width=3840, height=2160, cell=32, per_cell=15, score_bits=12)
     by = {m["memory"].name.split(":")[0]: m for m in orb_memory.memories(big)}
@@ -708,8 +712,12 @@ def test_orb_memory_formulas():
         assert queue["shape"] == [(1, orb_memory.fifo_words(rtl), g.record_bits)]
     rotate = vhdl(REPO / "rtl/orb/fastnms_orb_rotate.vhd")
     assert "table : for t in 0 to 3 generate" in rotate and "DEPTH => 64, WIDTH => 33" in rotate
+    assert vhdl_constant(rotate, "POINT_BITS") == "12 * LANES + 2"
+    assert vhdl_constant(rotate, "OUT_WORDS") == "16"
     sample = vhdl(REPO / "rtl/orb/fastnms_orb_sample.vhd")
-    assert vhdl_constant(sample, "SLOT") == "32 * ((ROWS + 31) / 32)" and "2 * SLOT," in sample
+    assert vhdl_constant(sample, "IN_BLOCK") == "ROWS > 32"
+    assert "DEPTH        => 2 * ROWS," in sample
+    assert orb_memory.SAMPLER_LUT_ROWS == 32
     assert orb_memory.lane_reach(8) == [10, 10, 13, 13, 14, 14, 18, 18]
     output = vhdl(REPO / "rtl/top/fastnms_record_output.vhd")
     assert vhdl_constant(output, "FIFO_BITS") == "4 + FIELD_BITS + PAYLOAD_BITS"

@@ -39,9 +39,10 @@ architecture rtl of fastnms_orb_rotate is
   -- Fill: accept, then product, round, shift, entries; the last entry written.
   constant FILL_STAGES : positive := 4;
   constant FILL_CLOCKS : positive := ENTRIES + FILL_STAGES + 1;
+  -- The tables' addresses registered (each drives one table's LUT RAM),
   -- fastnms_ram_sdp's read, then fastnms_orb_round_point.
   constant ROUND_LATENCY : positive := 5;
-  constant READ_LATENCY  : positive := 1 + ROUND_LATENCY;
+  constant READ_LATENCY  : positive := 2 + ROUND_LATENCY;
 
   subtype entry_t is std_logic_vector(32 downto 0); -- sticky & two's complement value
 
@@ -217,11 +218,21 @@ architecture rtl of fastnms_orb_rotate is
   signal read_full  : std_logic;
   signal read_bank  : std_logic;
   signal step       : natural range 0 to STEPS - 1;
-  signal advance    : std_logic;
   signal issue      : std_logic;
   signal valid_pipe : std_logic_vector(1 to READ_LATENCY);
   signal first_pipe : std_logic_vector(1 to READ_LATENCY);
   signal last_pipe  : std_logic_vector(1 to READ_LATENCY);
+
+  -- The read pipeline never stalls (no enable reaches the tables and the
+  -- rounding units): its steps land in a FIFO, and a step is issued only
+  -- while the FIFO promises room READ_LATENCY clocks later.
+  constant POINT_BITS  : positive := 12 * LANES + 2;
+  constant OUT_WORDS   : positive := 16;
+  constant ROOM_LEVEL  : positive := OUT_WORDS - 2 - READ_LATENCY;
+  signal   almost_full : std_logic;
+  signal   points_room : std_logic;
+  signal   points      : std_logic_vector(POINT_BITS - 1 downto 0);
+  signal   points_out  : std_logic_vector(POINT_BITS - 1 downto 0);
 
   -- fl(k c) on the grid: its magnitude and sticky bit.
 
@@ -336,10 +347,21 @@ begin
 
   end process domain;
 
+  -- The FIFO's promise: a step issued finds room.
+  room : process (clk) is
+  begin
+
+    if rising_edge(clk) then
+      assert rst = '1' or valid_pipe(READ_LATENCY) = '0' or points_room = '1'
+        report "fastnms_orb_rotate: a step found the point FIFO full"
+        severity failure;
+    end if;
+
+  end process room;
+
   -- pragma translate_on
 
-  advance <= out_ready or not valid_pipe(READ_LATENCY);
-  issue   <= advance and read_full;
+  issue <= read_full and not almost_full;
 
   read_control : process (clk) is
 
@@ -349,13 +371,11 @@ begin
   begin
 
     if rising_edge(clk) then
-      first := '1' when step = 0 else '0';
-      last  := '1' when step = STEPS - 1 else '0';
-      if advance = '1' then
-        valid_pipe <= issue & valid_pipe(1 to READ_LATENCY - 1);
-        first_pipe <= first & first_pipe(1 to READ_LATENCY - 1);
-        last_pipe  <= last & last_pipe(1 to READ_LATENCY - 1);
-      end if;
+      first      := '1' when step = 0 else '0';
+      last       := '1' when step = STEPS - 1 else '0';
+      valid_pipe <= issue & valid_pipe(1 to READ_LATENCY - 1);
+      first_pipe <= first & first_pipe(1 to READ_LATENCY - 1);
+      last_pipe  <= last & last_pipe(1 to READ_LATENCY - 1);
       if issue = '1' then
         if step = STEPS - 1 then
           step      <= 0;
@@ -389,9 +409,30 @@ begin
 
   end process read_control;
 
-  out_valid <= valid_pipe(READ_LATENCY);
-  out_first <= first_pipe(READ_LATENCY);
-  out_last  <= last_pipe(READ_LATENCY);
+  points(1 downto 0) <= first_pipe(READ_LATENCY) & last_pipe(READ_LATENCY);
+
+  out_points : entity work.fastnms_fifo
+    generic map (
+      DEPTH             => OUT_WORDS,
+      WIDTH             => POINT_BITS,
+      STYLE             => "distributed",
+      ALMOST_FULL_LEVEL => ROOM_LEVEL
+    )
+    port map (
+      clk         => clk,
+      rst         => rst,
+      in_valid    => valid_pipe(READ_LATENCY),
+      in_ready    => points_room,
+      almost_full => almost_full,
+      in_data     => points,
+      out_valid   => out_valid,
+      out_ready   => out_ready,
+      out_data    => points_out,
+      busy        => open
+    );
+
+  out_first <= points_out(1);
+  out_last  <= points_out(0);
 
   lane : for l in 0 to LANES - 1 generate
     constant X_ROM : index_rom_t := coordinate_rom(l, 0);
@@ -409,7 +450,15 @@ begin
     signal dy   : signed(5 downto 0);
   begin
 
-    addr <= (read_bank & X_ROM(step), read_bank & Y_ROM(step), read_bank & X_ROM(step), read_bank & Y_ROM(step));
+    addresses : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        addr <= (read_bank & X_ROM(step), read_bank & Y_ROM(step), read_bank & X_ROM(step), read_bank & Y_ROM(step));
+      end if;
+
+    end process addresses;
+
     data <= (wr_pa, wr_nb, wr_pb, wr_pa);
 
     table : for t in 0 to 3 generate
@@ -423,7 +472,7 @@ begin
           wr_en   => f_valid(FILL_STAGES),
           wr_addr => wr_addr,
           wr_data => data(t),
-          rd_en   => advance,
+          rd_en   => '1',
           rd_addr => addr(t),
           rd_data => got(t)
         );
@@ -433,7 +482,7 @@ begin
     round_x : entity work.fastnms_orb_round_point
       port map (
         clk       => clk,
-        en        => advance,
+        en        => '1',
         in_a      => got(0),
         in_b      => got(1),
         out_point => dx
@@ -442,14 +491,16 @@ begin
     round_y : entity work.fastnms_orb_round_point
       port map (
         clk       => clk,
-        en        => advance,
+        en        => '1',
         in_a      => got(2),
         in_b      => got(3),
         out_point => dy
       );
 
-    out_dx(6 * l + 5 downto 6 * l) <= std_logic_vector(dx);
-    out_dy(6 * l + 5 downto 6 * l) <= std_logic_vector(dy);
+    points(12 * l + 7 downto 12 * l + 2)  <= std_logic_vector(dx);
+    points(12 * l + 13 downto 12 * l + 8) <= std_logic_vector(dy);
+    out_dx(6 * l + 5 downto 6 * l)        <= points_out(12 * l + 7 downto 12 * l + 2);
+    out_dy(6 * l + 5 downto 6 * l)        <= points_out(12 * l + 13 downto 12 * l + 8);
   end generate lane;
 
 end architecture rtl;

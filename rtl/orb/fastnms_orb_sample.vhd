@@ -38,8 +38,8 @@ architecture rtl of fastnms_orb_sample is
   constant COLUMNS    : positive := 2 * HALF + 1;
   constant STEPS      : positive := ORB_POINTS / LANES;
   constant PAIR_LANES : positive := maximum(LANES / 2, 1);
-  -- From a step taken to the descriptor loaded (the stages above).
-  constant LATENCY : positive := 5;
+  -- From a step taken to its bits in (stages 1 .. 6; the lanes' stages).
+  constant LATENCY : positive := 6;
 
   type lane_bits_t is array (0 to PAIR_LANES - 1) of std_logic_vector(STEPS - 1 downto 0);
 
@@ -54,6 +54,8 @@ architecture rtl of fastnms_orb_sample is
   signal column_last : std_logic; -- column = COLUMNS - 1
   signal full        : std_logic_vector(0 to 1);
   signal take_patch  : std_logic;
+  -- The column taken on the last clock, written now.
+  signal column_taken : std_logic_vector(37 * 8 - 1 downto 0);
 
   -- The points: the bank they read and the next step.
   signal read_bank  : std_logic;
@@ -63,7 +65,7 @@ architecture rtl of fastnms_orb_sample is
   signal take_point : std_logic;
   signal held       : std_logic;
 
-  -- Valid and last step along the stages 1 (addresses) .. 5 (bits).
+  -- Valid and last step along the stages 1 (addresses) .. 6 (bits).
   signal valid      : std_logic_vector(1 to LATENCY);
   signal last       : std_logic_vector(1 to LATENCY);
   signal read_bank1 : std_logic;
@@ -97,6 +99,8 @@ begin
   begin
 
     if rising_edge(clk) then
+      column_taken <= patch_column;
+
       if take_patch = '1' then
         column_last <= to_sl(column = COLUMNS - 2);
         if column_last = '1' then
@@ -133,7 +137,7 @@ begin
 
       end loop;
 
-      if valid(5) = '1' and last(5) = '1' then
+      if valid(LATENCY) = '1' and last(LATENCY) = '1' then
         held <= '1';
       elsif out_ready = '1' then
         held <= '0';
@@ -157,45 +161,92 @@ begin
   out_valid <= held;
 
   -- Each lane's copy of the patch: rows and columns -REACH .. REACH, one word
-  -- of ROWS pixels per column, a bank of SLOT columns per keypoint.
+  -- of ROWS pixels per column, two banks of ROWS columns (bank 1 at ROWS).
+  -- A copy of more than 32 rows is block RAM (its 2 x ROWS words would take
+  -- 128-word LUT RAM, too much of an ECP5's; docs/design/orb_sampling.md),
+  -- read with its output register; the others are LUT RAM and delay their
+  -- pixel by one clock instead, so every lane's pixel lands at stage 5.
 
   lane : for l in 0 to LANES - 1 generate
-    constant REACH  : natural  := orb_lane_reach(l, LANES);
-    constant ROWS   : positive := 2 * REACH + 1;
-    constant SLOT   : positive := 32 * ((ROWS + 31) / 32);
-    constant GROUPS : positive := (ROWS + 7) / 8;
+    constant REACH    : natural  := orb_lane_reach(l, LANES);
+    constant ROWS     : positive := 2 * REACH + 1;
+    constant GROUPS   : positive := (ROWS + 7) / 8;
+    constant IN_BLOCK : boolean  := ROWS > 32;
+    constant ADDRESS  : positive := clog2(2 * ROWS);
 
     type groups_t is array (0 to GROUPS - 1) of std_logic_vector(7 downto 0);
 
-    constant SLOT_BITS : positive := clog2(SLOT);
+    -- fastnms_ram_sdp's style and read latency for this copy.
+    function style return string is
+    begin
 
-    signal wr_en    : std_logic;
-    signal wr_addr  : unsigned(SLOT_BITS downto 0);
-    signal rd_addr  : unsigned(SLOT_BITS downto 0);
-    signal word     : std_logic_vector(8 * ROWS - 1 downto 0);
-    signal row1     : unsigned(5 downto 0);
-    signal row2     : unsigned(5 downto 0);
-    signal group3   : unsigned(2 downto 0);
-    signal in_group : groups_t;
+      if IN_BLOCK then
+        return "block";
+      end if;
+
+      return "distributed";
+
+    end function style;
+
+    constant READ_LATENCY : positive := 1 + boolean'pos(IN_BLOCK);
+
+    signal in_window : boolean;
+    signal wr_en     : std_logic;
+    signal wr_addr   : unsigned(ADDRESS - 1 downto 0);
+    signal rd_addr   : unsigned(ADDRESS - 1 downto 0);
+    signal word      : std_logic_vector(8 * ROWS - 1 downto 0);
+
+    type rows_t is array (0 to READ_LATENCY) of unsigned(5 downto 0);
+
+    -- The point's row from stage 1 (index 0) to the stage its word is read at.
+    signal row_at     : rows_t;
+    signal row_group  : unsigned(2 downto 0);
+    signal in_group   : groups_t;
+    signal pixel_read : std_logic_vector(7 downto 0);
+    signal pixel_late : std_logic_vector(7 downto 0);
   begin
 
-    -- Column `column - HALF` of the patch is this copy's column `column - HALF + REACH`.
-    wr_en   <= take_patch when column >= HALF - REACH and column <= HALF + REACH else
-               '0';
-    wr_addr <= write_bank & to_unsigned(column + REACH + SLOT - HALF, SLOT_BITS + 2)(SLOT_BITS - 1 downto 0);
+    -- Column `column - HALF` of the patch is this copy's column `column - HALF + REACH`;
+    -- a copy takes ROWS columns a patch, so its written words count on
+    -- modulo 2 x ROWS through bank 0, then bank 1. The write is a clock
+    -- after the take, its enable a register of its own (it reaches every
+    -- LUT RAM of the copy); a bank's first read is two clocks after its last
+    -- column was taken.
+    in_window <= column >= HALF - REACH and column <= HALF + REACH;
+
+    write_address : process (clk) is
+    begin
+
+      if rising_edge(clk) then
+        wr_en <= take_patch when in_window else
+                 '0';
+        if wr_en = '1' then
+          if wr_addr = 2 * ROWS - 1 then
+            wr_addr <= (others => '0');
+          else
+            wr_addr <= wr_addr + 1;
+          end if;
+        end if;
+        if rst = '1' then
+          wr_en   <= '0';
+          wr_addr <= (others => '0');
+        end if;
+      end if;
+
+    end process write_address;
 
     copy : entity work.fastnms_ram_sdp
       generic map (
-        DEPTH        => 2 * SLOT,
+        DEPTH        => 2 * ROWS,
         WIDTH        => 8 * ROWS,
-        READ_LATENCY => 1,
-        STYLE        => "distributed"
+        READ_LATENCY => READ_LATENCY,
+        STYLE        => style
       )
       port map (
         clk     => clk,
         wr_en   => wr_en,
         wr_addr => wr_addr,
-        wr_data => patch_column(8 * (HALF + REACH) + 7 downto 8 * (HALF - REACH)),
+        wr_data => column_taken(8 * (HALF + REACH) + 7 downto 8 * (HALF - REACH)),
         rd_en   => '1',
         rd_addr => rd_addr,
         rd_data => word
@@ -203,29 +254,36 @@ begin
 
     stages : process (clk) is
 
-      variable col   : signed(6 downto 0);
+      variable col   : signed(7 downto 0);
       variable row   : signed(6 downto 0);
       variable pixel : std_logic_vector(7 downto 0);
 
     begin
 
       if rising_edge(clk) then
-        -- 1: the point's column (the address in the keypoint's bank) and row.
-        col     := resize(signed(point_dx(6 * l + 5 downto 6 * l)), 7) + REACH;
-        row     := resize(signed(point_dy(6 * l + 5 downto 6 * l)), 7) + REACH;
-        rd_addr <= read_bank & unsigned(col(SLOT_BITS - 1 downto 0));
-        row1    <= unsigned(row(5 downto 0));
+        -- 1: the point's column (its address in the keypoint's bank) and row.
+        -- (Taken points only: the copy's 2 x ROWS words need not fill the
+        -- address range.)
+        if read_bank = '1' then
+          col := resize(signed(point_dx(6 * l + 5 downto 6 * l)), 8) + (REACH + ROWS);
+        else
+          col := resize(signed(point_dx(6 * l + 5 downto 6 * l)), 8) + REACH;
+        end if;
+        row := resize(signed(point_dy(6 * l + 5 downto 6 * l)), 7) + REACH;
+        if take_point = '1' then
+          rd_addr <= unsigned(col(ADDRESS - 1 downto 0));
+        end if;
+        row_at(0)                 <= unsigned(row(5 downto 0));
+        row_at(1 to READ_LATENCY) <= row_at(0 to READ_LATENCY - 1);
 
-        -- 2: the word read; 3: the row within each group of 8.
-        row2 <= row1;
-
+        -- 2 + READ_LATENCY: the row within each group of 8 of the word read.
         for g in 0 to GROUPS - 1 loop
 
           in_group(g) <= word(64 * g + 7 downto 64 * g);
 
           for k in 1 to 7 loop
 
-            if row2(2 downto 0) = k and 8 * g + k < ROWS then
+            if row_at(READ_LATENCY)(2 downto 0) = k and 8 * g + k < ROWS then
               in_group(g) <= word(8 * (8 * g + k) + 7 downto 8 * (8 * g + k));
             end if;
 
@@ -233,23 +291,27 @@ begin
 
         end loop;
 
-        group3 <= row2(5 downto 3);
+        row_group <= row_at(READ_LATENCY)(5 downto 3);
 
-        -- 4: the pixel.
+        -- 3 + READ_LATENCY: the pixel (LUT RAM: delayed to stage 5 below).
         pixel := in_group(0);
 
         for g in 1 to GROUPS - 1 loop
 
-          if group3 = g then
+          if row_group = g then
             pixel := in_group(g);
           end if;
 
         end loop;
 
-        pixels(8 * l + 7 downto 8 * l) <= pixel;
+        pixel_read <= pixel;
+        pixel_late <= pixel_read;
       end if;
 
     end process stages;
+
+    pixels(8 * l + 7 downto 8 * l) <= pixel_read when IN_BLOCK else
+                                      pixel_late;
 
     -- pragma translate_off
     reach_check : process (clk) is
@@ -281,7 +343,7 @@ begin
 
   end generate pair_lane;
 
-  -- 5: the comparisons; then the bits shifted in and, at a keypoint's last
+  -- 6: the comparisons; then the bits shifted in and, at a keypoint's last
   -- step, the descriptor loaded.
   compare : process (clk) is
   begin
@@ -295,9 +357,9 @@ begin
 
       end loop;
 
-      if valid(5) = '1' then
+      if valid(LATENCY) = '1' then
         shifted <= next_bits;
-        if last(5) = '1' then
+        if last(LATENCY) = '1' then
           out_descriptor <= gathered;
         end if;
       end if;

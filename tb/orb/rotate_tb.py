@@ -26,8 +26,9 @@ POINT_BITS = 6
 PERIOD_NS = 10
 # docs/orb_rtl.md: from cos/sin taken to the keypoint's first step offered, with the
 # output ready and the other bank free: 26 products, 4 fill stages, the bank marked
-# full, the table read, the 5 stages of fastnms_orb_round_point.
-LATENCY = 26 + 4 + 1 + 1 + 5
+# full, the table address and read, the 5 stages of fastnms_orb_round_point, the point
+# FIFO (4).
+LATENCY = 26 + 4 + 1 + 2 + 5 + 4
 
 
 def cos_sin_pairs(rng: random.Random, count: int) -> tuple[np.ndarray, np.ndarray]:

@@ -31,7 +31,7 @@ SIDE = 2 * HALF + 1
 POINT_BITS = 6
 PERIOD_NS = 10
 # docs/orb_rtl.md: from a keypoint's last step taken to its descriptor offered.
-LATENCY = 6
+LATENCY = 7
 # A patch is 37 columns, written one per clock; the copies take the next while one is read.
 CAPTURE_CLOCKS = SIDE
 
