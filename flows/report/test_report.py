@@ -629,7 +629,7 @@ def test_orb_synth_section():
     memory = text.split("\n#### ORB memory\n")[1].split("\n###")[0]
     assert "| `fastnms_orb_rows` | blurred rows: 2·CELL + 36 kept" in memory
     assert "| 37 × 4096 × 8 | 1 212 416 | 74 |" in memory and "| **164** |" in memory
-    assert "| `fastnms_orb_stage-opencv-1920` | 11 (4 in block RAM) | 2 431 296 | 155 | 90 (" in (
+    assert "| `fastnms_orb_stage-opencv-1920` | 12 (4 in block RAM) | 2 432 864 | 155 | 90 (" in (
         memory
     )
     # Each entity's rows under its own heading, the top's generics beside them.

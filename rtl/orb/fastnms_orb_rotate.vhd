@@ -178,8 +178,12 @@ architecture rtl of fastnms_orb_rotate is
   end function entry;
 
   -- Accept and fill.
-  signal filling   : std_logic; -- from accept to the last write
-  signal fill_k    : natural range 0 to ENTRIES - 1;
+  signal filling : std_logic; -- from accept to the last write
+  signal fill_k  : natural range 0 to ENTRIES - 1;
+  -- |k| and k < 0 for k = fill_k + ORB_COORD_MIN, counted beside fill_k (so
+  -- the products' operands come straight from registers).
+  signal fill_mag  : unsigned(3 downto 0);
+  signal fill_neg  : std_logic;
   signal fill_next : std_logic; -- a k enters the pipeline
   signal fill_bank : std_logic;
   signal fa        : factor_t;
@@ -273,21 +277,17 @@ begin
   in_ready  <= not filling and not fill_full;
 
   fill : process (clk) is
-
-    variable k : integer;
-
   begin
 
     if rising_edge(clk) then
       -- 1: |k| times the significands.
-      k                        := fill_k + ORB_COORD_MIN;
       f_valid                  <= fill_next & f_valid(1 to FILL_STAGES - 1);
       f_last(1)                <= '1' when fill_k = ENTRIES - 1 else '0';
       f_last(2 to FILL_STAGES) <= f_last(1 to FILL_STAGES - 1);
       f_index                  <= to_unsigned(fill_k, 5) & f_index(1 to FILL_STAGES - 1);
-      f_neg_k                  <= '1' when k < 0 else '0';
-      prod_a                   <= resize(magnitude(k) * fa.significand, 28);
-      prod_b                   <= resize(magnitude(k) * fb.significand, 28);
+      f_neg_k                  <= fill_neg;
+      prod_a                   <= resize(fill_mag * fa.significand, 28);
+      prod_b                   <= resize(fill_mag * fb.significand, 28);
       -- 2: rounded to 24 significant bits.
       r_neg_a <= fa.negative xor f_neg_k;
       r_neg_b <= fb.negative xor f_neg_k;
@@ -309,6 +309,14 @@ begin
           fill_next <= '0';
         else
           fill_k <= fill_k + 1;
+          if fill_neg = '1' and fill_mag = 1 then
+            fill_neg <= '0';
+            fill_mag <= (others => '0');
+          elsif fill_neg = '1' then
+            fill_mag <= fill_mag - 1;
+          else
+            fill_mag <= fill_mag + 1;
+          end if;
         end if;
       end if;
       if f_valid(FILL_STAGES) = '1' and f_last(FILL_STAGES) = '1' then
@@ -319,6 +327,8 @@ begin
         filling   <= '1';
         fill_next <= '1';
         fill_k    <= 0;
+        fill_mag  <= magnitude(ORB_COORD_MIN);
+        fill_neg  <= '1' when ORB_COORD_MIN < 0 else '0';
         fa        <= factor(in_cos);
         fb        <= factor(in_sin);
       end if;
@@ -352,9 +362,11 @@ begin
   begin
 
     if rising_edge(clk) then
-      assert rst = '1' or valid_pipe(READ_LATENCY) = '0' or points_room = '1'
-        report "fastnms_orb_rotate: a step found the point FIFO full"
-        severity failure;
+      if rst = '0' and valid_pipe(READ_LATENCY) = '1' then
+        assert points_room = '1'
+          report "fastnms_orb_rotate: a step found the point FIFO full"
+          severity failure;
+      end if;
     end if;
 
   end process room;
