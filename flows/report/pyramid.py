@@ -23,7 +23,7 @@ from flows.report.pyramid_memory import (
     PLANS,
     SCORE_BITS,
     Level,
-    corner_fifo,
+    once,
     cost,
     levels,
     plan_cost,
@@ -262,22 +262,23 @@ def total_lines(cfgs: list[tuple[str, list[Level]]], summary: list[dict]) -> lis
     most = XC7Z020["bram18"]
     out = ["### Pyramid plan: memory totals and DDR", ""]
     out.append(
-        f"BRAM18 of all levels against the xc7z020's {most}, with the top's corner FIFO once "
-        "(a record with its angle and descriptor), for (a); option (b) adds its rows. Rows "
+        f"BRAM18 of all levels against the xc7z020's {most}, with the memories there once "
+        "(the top's corner FIFO, a record with its angle and descriptor, and the ORB "
+        "engine's patch copies in block RAM), for (a); option (b) adds its rows. Rows "
         "in DDR: each level's image is written there by an AXI4 master (as a video DMA "
         "does) and the ORB engine reads its keypoints' patches back."
     )
     out.append("")
     body = []
     for name, lv in cfgs:
-        fifo = corner_fifo(lv)[1]
+        fifo = once(lv)[1]
         row = [name, str(fifo)]
         for keys in PLANS.values():
             bram = plan_cost(keys, lv)[1] + fifo
             verdict = "fits" if bram <= most else "does not fit"
             row.append(f"{bram} ({100 * bram / most:.0f} %): {verdict}")
         body.append([*row, str(plan_cost(("row",), lv)[1])])
-    out += [*table(["size", "corner FIFO", *PLANS, "(b) adds"], body), ""]
+    out += [*table(["size", "once", *PLANS, "(b) adds"], body), ""]
     return out + ddr_lines(cfgs, summary)
 
 

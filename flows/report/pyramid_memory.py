@@ -164,8 +164,12 @@ DDR_ROWS = {
     "blurred rows in DDR": ("blurred rows",),
     "both rows in DDR": ("blurred rows", "plain rows"),
 }
-# The corner FIFO of the top (a record with its angle and descriptor): once.
-CORNER_FIFO = next(m for m in orb_memory.MEMORIES if m.name.startswith("corner FIFO"))
+# Memories there once whatever the levels: the top's corner FIFO (a record with its
+# angle and descriptor) and the shared ORB engine's patch copies in block RAM.
+ONCE = tuple(
+    next(m for m in orb_memory.MEMORIES if m.name.startswith(name))
+    for name in ("corner FIFO", "patch copies of more than")
+)
 
 
 def cost(memory: LevelMemory, lv: Level) -> tuple[int, int]:
@@ -180,6 +184,7 @@ def plan_cost(keys: tuple[str, ...], lv: list[Level]) -> tuple[int, int]:
     return sum(c[0] for c in costs), sum(c[1] for c in costs)
 
 
-def corner_fifo(lv: list[Level]) -> tuple[int, int]:
-    shape = CORNER_FIFO.shape(lv[0].orb)
-    return sum(n * w * b for n, w, b in shape), sum(n * ramb18(w, b) for n, w, b in shape)
+def once(lv: list[Level]) -> tuple[int, int]:
+    """(bits, BRAM18) of the memories there once (ONCE), at level 0's size."""
+    shapes = [shape for m in ONCE for shape in m.shape(lv[0].orb)]
+    return sum(n * w * b for n, w, b in shapes), sum(n * ramb18(w, b) for n, w, b in shapes)

@@ -93,7 +93,8 @@ def test_bram18_by_hand():
     # Level 0 all on chip: 6 + 2 + 6 + 1 (queue) + 74 + 62.
     level0 = plan_cost(pyramid_memory.PLANS["all on chip"], lv[:1])
     assert level0[1] == 151
-    assert pyramid_memory.corner_fifo(lv) == (512 * (4 + 30 + 288), 9)
+    # Once: the corner FIFO and the sampler's two 37-row copies (74 words of 37 pixels).
+    assert pyramid_memory.once(lv) == (512 * (4 + 30 + 288) + 2 * 74 * 296, 9 + 18)
 
 
 def test_formulas_follow_the_rtl():
@@ -131,7 +132,9 @@ def test_formulas_against_the_measured_rows(summary):
     expected = {
         "fastnms_line_buffer": cost(BY_KEY["line"], lv)[1],
         "fastnms_nms_3x3": cost(BY_KEY["nms"], lv)[1],
-        "fastnms_orb_stage": sum(cost(BY_KEY[k], lv)[1] for k in ("queue", "blurred", "plain")),
+        "fastnms_orb_stage": sum(cost(BY_KEY[k], lv)[1] for k in ("queue", "blurred", "plain"))
+        # the engine's patch copies in block RAM, once
+        + sum(n * ramb18(w, b) for n, w, b in pyramid_memory.ONCE[1].shape(lv.orb)),
     }
     checked = 0
     for row in summary + [RESIZE]:

@@ -575,7 +575,7 @@ def test_orb_targets():
     lines = target_lines(targets)
     assert sum("**not reached**" in line for line in lines) == 4  # 2 Fmax, 2 x levels
     assert sum(line.startswith("- *orb-unit-levels*") for line in lines) == 1
-    assert any(line.startswith("- *orb-block-fmax*: A place and route") for line in lines)
+    assert any(line.startswith("- *orb-block-fmax*: Each row's critical path") for line in lines)
 
 
 def test_orb_targets_not_finished():

@@ -58,10 +58,12 @@ DEEPER = {
     # The column moment T (16 bits) and the column sum (13) are adds of more than
     # 12 bits, one clock each.
     "fastnms_orb_moments": 5,
-    # The ORB engine, and ORB after the budget around it: the angle units' depth.
-    "fastnms_orb_describe": 13,
+    # The ORB engine, and ORB after the budget around it: the angle units' depth (in
+    # them abc maps the angle's rounding into its register c one LUT deeper than
+    # alone: 14).
+    "fastnms_orb_describe": 14,
     "fastnms_orb_feed": 14,
-    "fastnms_orb_stage": 13,
+    "fastnms_orb_stage": 14,
     # The pyramid resizer: its blocks (scale, taps, walk) map into 4 levels alone;
     # flattened into the resizer, abc chains the scale FSM's synchronous sets and
     # resets into 5 (docs/fastnms_resize.md, Guarantees and limits).
