@@ -65,8 +65,9 @@ DEEPER = {
     "fastnms_orb_feed": 14,
     "fastnms_orb_stage": 14,
     # The pyramid resizer: its blocks (scale, taps, walk) map into 4 levels alone;
-    # flattened into the resizer, abc chains the scale FSM's synchronous sets and
-    # resets into 5 (docs/fastnms_resize.md, Guarantees and limits).
+    # flattened into the resizer, abc9 chains shared ORs and enables into 5 in the
+    # walks, the taps' rounding and the scales (docs/fastnms_resize.md, Guarantees
+    # and limits).
     "fastnms_resize": MAX_LOGIC_LEVELS + 1,
     # The ORB row buffers: a request's top row split by ROMs (which of the
     # memories read the next slot: a 37-bit thermometer of a 7-bit row), which
