@@ -23,9 +23,9 @@ from flows.report.pyramid_memory import (
     PLANS,
     SCORE_BITS,
     Level,
-    once,
     cost,
     levels,
+    once,
     plan_cost,
     shares,
 )
