@@ -380,6 +380,17 @@ def test_nextpnr_does_not_fit_or_timeout(monkeypatch, tmp_path):
         "ERROR: Unable to place cell 'x', no BELs remaining to implement cell type 'DP16KD'\n"
     )
     assert ecp5.over_used(log) == {"DP16KD": (178, 108)}
+    # Over 100 % before packing only (RAM LUTs, an estimate): the design fits.
+    fits = (
+        "Info: Logic utilisation before packing:\n"
+        "Info:           RAM LUTs:   9372/ 5481   170%\n"
+        "\n"
+        "Info: Device utilisation:\n"
+        "Info: \t      TRELLIS_RAMW:  2343/ 5481    42%\n"
+        "\n"
+        "Info: Program finished normally.\n"
+    )
+    assert ecp5.over_used(fits) == {}
 
     def failing(cmd, **kwargs):
         return subprocess.CompletedProcess(cmd, 1, log, "")
